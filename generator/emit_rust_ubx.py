@@ -2,7 +2,8 @@
 of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, `sbf_messages`, the same code
 in their byte order and framing), a struct per layout (named as the Python classes of emit_python_ubx) with
 straight-line `read`, `write` and JSON code over the runtime's byte reader and writer
-(runtime/rust/src/ubx.rs), a struct per repeated group's entry, and the `Message` enum that picks
+(runtime/rust/src/ubx.rs; a run of fields at fixed offsets is read as one array after one length
+check, `ByteReader::run`), a struct per repeated group's entry, and the `Message` enum that picks
 a layout by class and id, then by length and version, as the Python runtime and the reference
 decoder (generator/reference_binary.py) pick it.
 
@@ -134,13 +135,40 @@ class _Record:
         # its bytes at fixed offsets (one length check an entry, not one a field); None otherwise.
         self.plain: list[tuple[str, str, int, int, str]] | None = []
         self.values: dict[str, tuple[str, str]] = {}   # field or part id -> its value's expression and type
+        # The fields of fixed width read since the last field of another kind, each (its read alone, its
+        # member, its integer or float type, "" for characters or bytes, its bytes, key): a run read
+        # after one length check, as one array, `fixed`.
+        self.run: list[tuple[str, str, str, int, str]] = []
         for i, item in enumerate(items):
             if isinstance(item, PayloadGroup):
+                self._end_run()
                 self._group(item, items[i + 1:])
             elif isinstance(item, PayloadField):
                 self._field(item, items[i + 1:])
             else:
                 raise NotImplementedError(f"{item.origin.file}: a choice in a binary layout has no Rust code yet")
+        self._end_run()
+
+    def _end_run(self) -> None:
+        """The reads of the run of fixed-width fields just ended: a field alone read as such; two or
+        more fields as one array of their bytes, `fixed` (`ByteReader::run`: one length check, and a
+        payload too short for the run names the first field it cuts), each field at its offset in it."""
+        run, self.run = self.run, []
+        if len(run) == 1:
+            self.read.append(f"let {run[0][1]} = {run[0][0]};")
+        elif run:
+            table = ", ".join(f"({key}, {width})" for *_, width, key in run)
+            self.read.append(f"let fixed: &[u8; {sum(width for *_, width, _ in run)}] = r.run(&[{table}])?;")
+            at = 0
+            for _, name, kind, width, _ in run:
+                if kind == "u8":
+                    self.read.append(f"let {name} = fixed[{at}];")
+                elif kind:
+                    value = ", ".join(f"fixed[{at + k}]" for k in range(width))
+                    self.read.append(f"let {name} = {kind}::from_{self.order}_bytes([{value}]);")
+                else:
+                    self.read.append(f"let {name} = &fixed[{at}..{at + width}];")
+                at += width
 
     def _field(self, f: PayloadField, following: list) -> None:
         _check(f)
@@ -169,9 +197,15 @@ class _Record:
             o = self.order
             read = f"{{ let b: [u8; {width}] = r.array({key})?; let mut {o} = [0u8; {pad + width}]; " \
                    f"{o}{span}.copy_from_slice(&b); {kind}::from_{o}_bytes({o}) }}"
-        if certain:
+        if f.id == "fixed":
+            raise NotImplementedError(f"{f.origin.file}: {f.id}: a field named as the bytes of a run of fields")
+        if certain and width is not None and (f.type in ("ch", "bytes") or width in (1, 2, 4, 8, 16)):
+            self.run.append((read, name, "" if f.type in ("ch", "bytes") else kind, width, key))
+        elif certain:
+            self._end_run()
             self.read.append(f"let {name} = {read};")
         elif f.optional:
+            self._end_run()
             self.read.append(f"let {name} = if present && r.remaining() >= {width} {{ Some({read}) }} else {{ None }};")
             if following:
                 self.read.append(f"let present = {name}.is_some();")

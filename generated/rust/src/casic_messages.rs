@@ -64,13 +64,15 @@ impl<'a> NavDop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let pdop = f32::from_le_bytes(r.array("pdop")?);
-        let hdop = f32::from_le_bytes(r.array("hdop")?);
-        let vdop = f32::from_le_bytes(r.array("vdop")?);
-        let ndop = f32::from_le_bytes(r.array("ndop")?);
-        let edop = f32::from_le_bytes(r.array("edop")?);
-        let tdop = f32::from_le_bytes(r.array("tdop")?);
+        let fixed: &[u8; 28] =
+            r.run(&[("run_time", 4), ("pdop", 4), ("hdop", 4), ("vdop", 4), ("ndop", 4), ("edop", 4), ("tdop", 4)])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pdop = f32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let hdop = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let vdop = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ndop = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let edop = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let tdop = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self { run_time, pdop, hdop, vdop, ndop, edop, tdop, trailing })
     }
@@ -201,30 +203,60 @@ impl<'a> NavPv<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let pos_valid = u8::from_le_bytes(r.array("pos_valid")?);
-        let vel_valid = u8::from_le_bytes(r.array("vel_valid")?);
-        let system = u8::from_le_bytes(r.array("system")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let num_sv_gps = u8::from_le_bytes(r.array("num_sv_gps")?);
-        let num_sv_bds = u8::from_le_bytes(r.array("num_sv_bds")?);
-        let num_sv_glonass = u8::from_le_bytes(r.array("num_sv_glonass")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let pdop = f32::from_le_bytes(r.array("pdop")?);
-        let lon = f64::from_le_bytes(r.array("lon")?);
-        let lat = f64::from_le_bytes(r.array("lat")?);
-        let height = f32::from_le_bytes(r.array("height")?);
-        let sep_geoid = f32::from_le_bytes(r.array("sep_geoid")?);
-        let h_acc = f32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = f32::from_le_bytes(r.array("v_acc")?);
-        let vel_n = f32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = f32::from_le_bytes(r.array("vel_e")?);
-        let vel_u = f32::from_le_bytes(r.array("vel_u")?);
-        let speed_3d = f32::from_le_bytes(r.array("speed_3d")?);
-        let speed_2d = f32::from_le_bytes(r.array("speed_2d")?);
-        let heading = f32::from_le_bytes(r.array("heading")?);
-        let s_acc = f32::from_le_bytes(r.array("s_acc")?);
-        let c_acc = f32::from_le_bytes(r.array("c_acc")?);
+        let fixed: &[u8; 80] = r.run(&[
+            ("run_time", 4),
+            ("pos_valid", 1),
+            ("vel_valid", 1),
+            ("system", 1),
+            ("num_sv", 1),
+            ("num_sv_gps", 1),
+            ("num_sv_bds", 1),
+            ("num_sv_glonass", 1),
+            ("reserved0", 1),
+            ("pdop", 4),
+            ("lon", 8),
+            ("lat", 8),
+            ("height", 4),
+            ("sep_geoid", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_u", 4),
+            ("speed_3d", 4),
+            ("speed_2d", 4),
+            ("heading", 4),
+            ("s_acc", 4),
+            ("c_acc", 4),
+        ])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_valid = fixed[4];
+        let vel_valid = fixed[5];
+        let system = fixed[6];
+        let num_sv = fixed[7];
+        let num_sv_gps = fixed[8];
+        let num_sv_bds = fixed[9];
+        let num_sv_glonass = fixed[10];
+        let reserved0 = fixed[11];
+        let pdop = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let lon = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let lat = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let height = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let sep_geoid = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let h_acc = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let v_acc = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let vel_n = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_e = f32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let vel_u = f32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let speed_3d = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let speed_2d = f32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let heading = f32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let s_acc = f32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let c_acc = f32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
         let trailing = r.rest();
         Ok(Self {
             run_time,
@@ -396,19 +428,34 @@ impl<'a> NavTimeutc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let t_acc = f32::from_le_bytes(r.array("t_acc")?);
-        let ms_err = f32::from_le_bytes(r.array("ms_err")?);
-        let ms = u16::from_le_bytes(r.array("ms")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let time_src = u8::from_le_bytes(r.array("time_src")?);
-        let date_valid = u8::from_le_bytes(r.array("date_valid")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("run_time", 4),
+            ("t_acc", 4),
+            ("ms_err", 4),
+            ("ms", 2),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+            ("time_src", 1),
+            ("date_valid", 1),
+        ])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let t_acc = f32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ms_err = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ms = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let year = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let month = fixed[16];
+        let day = fixed[17];
+        let hour = fixed[18];
+        let min = fixed[19];
+        let sec = fixed[20];
+        let valid = fixed[21];
+        let time_src = fixed[22];
+        let date_valid = fixed[23];
         let trailing = r.rest();
         Ok(Self {
             run_time,
@@ -629,11 +676,13 @@ impl<'a> NavGpsinfo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let num_view_sv = u8::from_le_bytes(r.array("num_view_sv")?);
-        let num_fix_sv = u8::from_le_bytes(r.array("num_fix_sv")?);
-        let system = u8::from_le_bytes(r.array("system")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("run_time", 4), ("num_view_sv", 1), ("num_fix_sv", 1), ("system", 1), ("reserved0", 1)])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let num_view_sv = fixed[4];
+        let num_fix_sv = fixed[5];
+        let system = fixed[6];
+        let reserved0 = fixed[7];
         let svs = r.group(Some(usize::from(num_view_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { run_time, num_view_sv, num_fix_sv, system, reserved0, svs, trailing })
@@ -823,11 +872,13 @@ impl<'a> NavBdsinfo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let num_view_sv = u8::from_le_bytes(r.array("num_view_sv")?);
-        let num_fix_sv = u8::from_le_bytes(r.array("num_fix_sv")?);
-        let system = u8::from_le_bytes(r.array("system")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("run_time", 4), ("num_view_sv", 1), ("num_fix_sv", 1), ("system", 1), ("reserved0", 1)])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let num_view_sv = fixed[4];
+        let num_fix_sv = fixed[5];
+        let system = fixed[6];
+        let reserved0 = fixed[7];
         let svs = r.group(Some(usize::from(num_view_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { run_time, num_view_sv, num_fix_sv, system, reserved0, svs, trailing })
@@ -1017,11 +1068,13 @@ impl<'a> NavGlninfo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let num_view_sv = u8::from_le_bytes(r.array("num_view_sv")?);
-        let num_fix_sv = u8::from_le_bytes(r.array("num_fix_sv")?);
-        let system = u8::from_le_bytes(r.array("system")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("run_time", 4), ("num_view_sv", 1), ("num_fix_sv", 1), ("system", 1), ("reserved0", 1)])?;
+        let run_time = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let num_view_sv = fixed[4];
+        let num_fix_sv = fixed[5];
+        let system = fixed[6];
+        let reserved0 = fixed[7];
         let svs = r.group(Some(usize::from(num_view_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { run_time, num_view_sv, num_fix_sv, system, reserved0, svs, trailing })
@@ -1085,9 +1138,10 @@ impl<'a> AckNak<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let cls_id = u8::from_le_bytes(r.array("cls_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("cls_id", 1), ("msg_id", 1), ("reserved0", 2)])?;
+        let cls_id = fixed[0];
+        let msg_id = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { cls_id, msg_id, reserved0, trailing })
     }
@@ -1144,9 +1198,10 @@ impl<'a> AckAck<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let cls_id = u8::from_le_bytes(r.array("cls_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("cls_id", 1), ("msg_id", 1), ("reserved0", 2)])?;
+        let cls_id = fixed[0];
+        let msg_id = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { cls_id, msg_id, reserved0, trailing })
     }
@@ -1281,10 +1336,11 @@ impl<'a> CfgPrt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let port_id = u8::from_le_bytes(r.array("port_id")?);
-        let proto_mask = u8::from_le_bytes(r.array("proto_mask")?);
-        let mode = u16::from_le_bytes(r.array("mode")?);
-        let baud_rate = u32::from_le_bytes(r.array("baud_rate")?);
+        let fixed: &[u8; 8] = r.run(&[("port_id", 1), ("proto_mask", 1), ("mode", 2), ("baud_rate", 4)])?;
+        let port_id = fixed[0];
+        let proto_mask = fixed[1];
+        let mode = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let baud_rate = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { port_id, proto_mask, mode, baud_rate, trailing })
     }
@@ -1391,9 +1447,10 @@ impl<'a> CfgMsg<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let msg_class = u8::from_le_bytes(r.array("msg_class")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
-        let rate = u16::from_le_bytes(r.array("rate")?);
+        let fixed: &[u8; 4] = r.run(&[("msg_class", 1), ("msg_id", 1), ("rate", 2)])?;
+        let msg_class = fixed[0];
+        let msg_id = fixed[1];
+        let rate = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { msg_class, msg_id, rate, trailing })
     }
@@ -1492,8 +1549,9 @@ impl<'a> CfgRate<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let interval = u16::from_le_bytes(r.array("interval")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("interval", 2), ("reserved0", 2)])?;
+        let interval = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { interval, reserved0, trailing })
     }
@@ -1590,8 +1648,9 @@ impl<'a> MonVer<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("CASIC");
-        let sw_version = r.bytes(32, "sw_version")?;
-        let hw_version = r.bytes(32, "hw_version")?;
+        let fixed: &[u8; 64] = r.run(&[("sw_version", 32), ("hw_version", 32)])?;
+        let sw_version = &fixed[0..32];
+        let hw_version = &fixed[32..64];
         let trailing = r.rest();
         Ok(Self { sw_version, hw_version, trailing })
     }

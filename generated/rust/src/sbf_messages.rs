@@ -115,16 +115,28 @@ impl<'a> PvtDop<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let nr_sv = u8::from_le_bytes(r.array("nr_sv")?);
-        let reserved = u8::from_le_bytes(r.array("reserved")?);
-        let pdop_raw = u16::from_le_bytes(r.array("pdop")?);
-        let tdop_raw = u16::from_le_bytes(r.array("tdop")?);
-        let hdop_raw = u16::from_le_bytes(r.array("hdop")?);
-        let vdop_raw = u16::from_le_bytes(r.array("vdop")?);
-        let hpl_raw = f32::from_le_bytes(r.array("hpl")?);
-        let vpl_raw = f32::from_le_bytes(r.array("vpl")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("nr_sv", 1),
+            ("reserved", 1),
+            ("pdop", 2),
+            ("tdop", 2),
+            ("hdop", 2),
+            ("vdop", 2),
+            ("hpl", 4),
+            ("vpl", 4),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let nr_sv = fixed[6];
+        let reserved = fixed[7];
+        let pdop_raw = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let tdop_raw = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let hdop_raw = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let vdop_raw = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let hpl_raw = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let vpl_raw = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -521,34 +533,71 @@ impl<'a> PvtCartesian<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let x_raw = f64::from_le_bytes(r.array("x")?);
-        let y_raw = f64::from_le_bytes(r.array("y")?);
-        let z_raw = f64::from_le_bytes(r.array("z")?);
-        let undulation_raw = f32::from_le_bytes(r.array("undulation")?);
-        let vx_raw = f32::from_le_bytes(r.array("vx")?);
-        let vy_raw = f32::from_le_bytes(r.array("vy")?);
-        let vz_raw = f32::from_le_bytes(r.array("vz")?);
-        let cog_raw = f32::from_le_bytes(r.array("cog")?);
-        let rx_clk_bias_raw = f64::from_le_bytes(r.array("rx_clk_bias")?);
-        let rx_clk_drift_raw = f32::from_le_bytes(r.array("rx_clk_drift")?);
-        let time_system_raw = u8::from_le_bytes(r.array("time_system")?);
-        let datum_raw = u8::from_le_bytes(r.array("datum")?);
-        let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
-        let wa_corr_info = u8::from_le_bytes(r.array("wa_corr_info")?);
-        let reference_id_raw = u16::from_le_bytes(r.array("reference_id")?);
-        let mean_corr_age_raw = u16::from_le_bytes(r.array("mean_corr_age")?);
-        let signal_info = u32::from_le_bytes(r.array("signal_info")?);
-        let alert_flag = u8::from_le_bytes(r.array("alert_flag")?);
-        let nr_bases = u8::from_le_bytes(r.array("nr_bases")?);
-        let ppp_info = u16::from_le_bytes(r.array("ppp_info")?);
-        let latency_raw = u16::from_le_bytes(r.array("latency")?);
-        let h_accuracy_raw = u16::from_le_bytes(r.array("h_accuracy")?);
-        let v_accuracy_raw = u16::from_le_bytes(r.array("v_accuracy")?);
-        let misc = u8::from_le_bytes(r.array("misc")?);
+        let fixed: &[u8; 87] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("x", 8),
+            ("y", 8),
+            ("z", 8),
+            ("undulation", 4),
+            ("vx", 4),
+            ("vy", 4),
+            ("vz", 4),
+            ("cog", 4),
+            ("rx_clk_bias", 8),
+            ("rx_clk_drift", 4),
+            ("time_system", 1),
+            ("datum", 1),
+            ("nr_sv", 1),
+            ("wa_corr_info", 1),
+            ("reference_id", 2),
+            ("mean_corr_age", 2),
+            ("signal_info", 4),
+            ("alert_flag", 1),
+            ("nr_bases", 1),
+            ("ppp_info", 2),
+            ("latency", 2),
+            ("h_accuracy", 2),
+            ("v_accuracy", 2),
+            ("misc", 1),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let x_raw =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let y_raw = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let z_raw = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let undulation_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let vx_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let vy_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let vz_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let cog_raw = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let rx_clk_bias_raw = f64::from_le_bytes([
+            fixed[52], fixed[53], fixed[54], fixed[55], fixed[56], fixed[57], fixed[58], fixed[59],
+        ]);
+        let rx_clk_drift_raw = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let time_system_raw = fixed[64];
+        let datum_raw = fixed[65];
+        let nr_sv_raw = fixed[66];
+        let wa_corr_info = fixed[67];
+        let reference_id_raw = u16::from_le_bytes([fixed[68], fixed[69]]);
+        let mean_corr_age_raw = u16::from_le_bytes([fixed[70], fixed[71]]);
+        let signal_info = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let alert_flag = fixed[76];
+        let nr_bases = fixed[77];
+        let ppp_info = u16::from_le_bytes([fixed[78], fixed[79]]);
+        let latency_raw = u16::from_le_bytes([fixed[80], fixed[81]]);
+        let h_accuracy_raw = u16::from_le_bytes([fixed[82], fixed[83]]);
+        let v_accuracy_raw = u16::from_le_bytes([fixed[84], fixed[85]]);
+        let misc = fixed[86];
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -1088,34 +1137,71 @@ impl<'a> PvtGeodetic<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let latitude_raw = f64::from_le_bytes(r.array("latitude")?);
-        let longitude_raw = f64::from_le_bytes(r.array("longitude")?);
-        let height_raw = f64::from_le_bytes(r.array("height")?);
-        let undulation_raw = f32::from_le_bytes(r.array("undulation")?);
-        let vn_raw = f32::from_le_bytes(r.array("vn")?);
-        let ve_raw = f32::from_le_bytes(r.array("ve")?);
-        let vu_raw = f32::from_le_bytes(r.array("vu")?);
-        let cog_raw = f32::from_le_bytes(r.array("cog")?);
-        let rx_clk_bias_raw = f64::from_le_bytes(r.array("rx_clk_bias")?);
-        let rx_clk_drift_raw = f32::from_le_bytes(r.array("rx_clk_drift")?);
-        let time_system_raw = u8::from_le_bytes(r.array("time_system")?);
-        let datum_raw = u8::from_le_bytes(r.array("datum")?);
-        let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
-        let wa_corr_info = u8::from_le_bytes(r.array("wa_corr_info")?);
-        let reference_id_raw = u16::from_le_bytes(r.array("reference_id")?);
-        let mean_corr_age_raw = u16::from_le_bytes(r.array("mean_corr_age")?);
-        let signal_info = u32::from_le_bytes(r.array("signal_info")?);
-        let alert_flag = u8::from_le_bytes(r.array("alert_flag")?);
-        let nr_bases = u8::from_le_bytes(r.array("nr_bases")?);
-        let ppp_info = u16::from_le_bytes(r.array("ppp_info")?);
-        let latency_raw = u16::from_le_bytes(r.array("latency")?);
-        let h_accuracy_raw = u16::from_le_bytes(r.array("h_accuracy")?);
-        let v_accuracy_raw = u16::from_le_bytes(r.array("v_accuracy")?);
-        let misc = u8::from_le_bytes(r.array("misc")?);
+        let fixed: &[u8; 87] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("latitude", 8),
+            ("longitude", 8),
+            ("height", 8),
+            ("undulation", 4),
+            ("vn", 4),
+            ("ve", 4),
+            ("vu", 4),
+            ("cog", 4),
+            ("rx_clk_bias", 8),
+            ("rx_clk_drift", 4),
+            ("time_system", 1),
+            ("datum", 1),
+            ("nr_sv", 1),
+            ("wa_corr_info", 1),
+            ("reference_id", 2),
+            ("mean_corr_age", 2),
+            ("signal_info", 4),
+            ("alert_flag", 1),
+            ("nr_bases", 1),
+            ("ppp_info", 2),
+            ("latency", 2),
+            ("h_accuracy", 2),
+            ("v_accuracy", 2),
+            ("misc", 1),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let latitude_raw =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let longitude_raw = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let height_raw = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let undulation_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let vn_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let ve_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let vu_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let cog_raw = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let rx_clk_bias_raw = f64::from_le_bytes([
+            fixed[52], fixed[53], fixed[54], fixed[55], fixed[56], fixed[57], fixed[58], fixed[59],
+        ]);
+        let rx_clk_drift_raw = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let time_system_raw = fixed[64];
+        let datum_raw = fixed[65];
+        let nr_sv_raw = fixed[66];
+        let wa_corr_info = fixed[67];
+        let reference_id_raw = u16::from_le_bytes([fixed[68], fixed[69]]);
+        let mean_corr_age_raw = u16::from_le_bytes([fixed[70], fixed[71]]);
+        let signal_info = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let alert_flag = fixed[76];
+        let nr_bases = fixed[77];
+        let ppp_info = u16::from_le_bytes([fixed[78], fixed[79]]);
+        let latency_raw = u16::from_le_bytes([fixed[80], fixed[81]]);
+        let h_accuracy_raw = u16::from_le_bytes([fixed[82], fixed[83]]);
+        let v_accuracy_raw = u16::from_le_bytes([fixed[84], fixed[85]]);
+        let misc = fixed[86];
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -1362,12 +1448,20 @@ pub struct SatVisibilitySatInfoEntry<'a> {
 impl<'a> ubx::Entry<'a> for SatVisibilitySatInfoEntry<'a> {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let freq_nr_raw = u8::from_le_bytes(r.array("freq_nr")?);
-        let azimuth_raw = u16::from_le_bytes(r.array("azimuth")?);
-        let elevation_raw = i16::from_le_bytes(r.array("elevation")?);
-        let rise_set_raw = u8::from_le_bytes(r.array("rise_set")?);
-        let satellite_info_raw = u8::from_le_bytes(r.array("satellite_info")?);
+        let fixed: &[u8; 8] = r.run(&[
+            ("svid", 1),
+            ("freq_nr", 1),
+            ("azimuth", 2),
+            ("elevation", 2),
+            ("rise_set", 1),
+            ("satellite_info", 1),
+        ])?;
+        let svid = fixed[0];
+        let freq_nr_raw = fixed[1];
+        let azimuth_raw = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let elevation_raw = i16::from_le_bytes([fixed[4], fixed[5]]);
+        let rise_set_raw = fixed[6];
+        let satellite_info_raw = fixed[7];
         let trailing = r.left(0);
         Ok(Self { svid, freq_nr_raw, azimuth_raw, elevation_raw, rise_set_raw, satellite_info_raw, trailing })
     }
@@ -1487,10 +1581,11 @@ impl<'a> SatVisibility<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let n = u8::from_le_bytes(r.array("n")?);
-        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
+        let fixed: &[u8; 8] = r.run(&[("tow", 4), ("wnc", 2), ("n", 1), ("sb_length", 1)])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let n = fixed[6];
+        let sb_length = fixed[7];
         let sat_info =
             r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "sat_info", "sb_length")?;
         let trailing = r.rest();
@@ -1547,10 +1642,11 @@ pub struct ReceiverStatusAgcStateEntry<'a> {
 impl<'a> ubx::Entry<'a> for ReceiverStatusAgcStateEntry<'a> {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let front_end_id = u8::from_le_bytes(r.array("front_end_id")?);
-        let gain_raw = i8::from_le_bytes(r.array("gain")?);
-        let sample_var = u8::from_le_bytes(r.array("sample_var")?);
-        let blanking_stat = u8::from_le_bytes(r.array("blanking_stat")?);
+        let fixed: &[u8; 4] = r.run(&[("front_end_id", 1), ("gain", 1), ("sample_var", 1), ("blanking_stat", 1)])?;
+        let front_end_id = fixed[0];
+        let gain_raw = i8::from_le_bytes([fixed[1]]);
+        let sample_var = fixed[2];
+        let blanking_stat = fixed[3];
         let trailing = r.left(0);
         Ok(Self { front_end_id, gain_raw, sample_var, blanking_stat, trailing })
     }
@@ -1909,17 +2005,30 @@ impl<'a> ReceiverStatus<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let cpu_load_raw = u8::from_le_bytes(r.array("cpu_load")?);
-        let ext_error = u8::from_le_bytes(r.array("ext_error")?);
-        let up_time = u32::from_le_bytes(r.array("up_time")?);
-        let rx_state = u32::from_le_bytes(r.array("rx_state")?);
-        let rx_error = u32::from_le_bytes(r.array("rx_error")?);
-        let n = u8::from_le_bytes(r.array("n")?);
-        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
-        let cmd_count_raw = u8::from_le_bytes(r.array("cmd_count")?);
-        let temperature_raw = u8::from_le_bytes(r.array("temperature")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("cpu_load", 1),
+            ("ext_error", 1),
+            ("up_time", 4),
+            ("rx_state", 4),
+            ("rx_error", 4),
+            ("n", 1),
+            ("sb_length", 1),
+            ("cmd_count", 1),
+            ("temperature", 1),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let cpu_load_raw = fixed[6];
+        let ext_error = fixed[7];
+        let up_time = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let rx_state = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let rx_error = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let n = fixed[20];
+        let sb_length = fixed[21];
+        let cmd_count_raw = fixed[22];
+        let temperature_raw = fixed[23];
         let agc_state =
             r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "agc_state", "sb_length")?;
         let trailing = r.rest();
@@ -2067,21 +2176,43 @@ pub struct BaseVectorCartVectorInfoEntry<'a> {
 impl<'a> ubx::Entry<'a> for BaseVectorCartVectorInfoEntry<'a> {
     const WIDTH: usize = 52;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let misc = u8::from_le_bytes(r.array("misc")?);
-        let delta_x_raw = f64::from_le_bytes(r.array("delta_x")?);
-        let delta_y_raw = f64::from_le_bytes(r.array("delta_y")?);
-        let delta_z_raw = f64::from_le_bytes(r.array("delta_z")?);
-        let delta_vx_raw = f32::from_le_bytes(r.array("delta_vx")?);
-        let delta_vy_raw = f32::from_le_bytes(r.array("delta_vy")?);
-        let delta_vz_raw = f32::from_le_bytes(r.array("delta_vz")?);
-        let azimuth_raw = u16::from_le_bytes(r.array("azimuth")?);
-        let elevation_raw = i16::from_le_bytes(r.array("elevation")?);
-        let reference_id_raw = u16::from_le_bytes(r.array("reference_id")?);
-        let corr_age_raw = u16::from_le_bytes(r.array("corr_age")?);
-        let signal_info = u32::from_le_bytes(r.array("signal_info")?);
+        let fixed: &[u8; 52] = r.run(&[
+            ("nr_sv", 1),
+            ("error", 1),
+            ("mode", 1),
+            ("misc", 1),
+            ("delta_x", 8),
+            ("delta_y", 8),
+            ("delta_z", 8),
+            ("delta_vx", 4),
+            ("delta_vy", 4),
+            ("delta_vz", 4),
+            ("azimuth", 2),
+            ("elevation", 2),
+            ("reference_id", 2),
+            ("corr_age", 2),
+            ("signal_info", 4),
+        ])?;
+        let nr_sv_raw = fixed[0];
+        let error_raw = fixed[1];
+        let mode = fixed[2];
+        let misc = fixed[3];
+        let delta_x_raw =
+            f64::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let delta_y_raw = f64::from_le_bytes([
+            fixed[12], fixed[13], fixed[14], fixed[15], fixed[16], fixed[17], fixed[18], fixed[19],
+        ]);
+        let delta_z_raw = f64::from_le_bytes([
+            fixed[20], fixed[21], fixed[22], fixed[23], fixed[24], fixed[25], fixed[26], fixed[27],
+        ]);
+        let delta_vx_raw = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let delta_vy_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let delta_vz_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let azimuth_raw = u16::from_le_bytes([fixed[40], fixed[41]]);
+        let elevation_raw = i16::from_le_bytes([fixed[42], fixed[43]]);
+        let reference_id_raw = u16::from_le_bytes([fixed[44], fixed[45]]);
+        let corr_age_raw = u16::from_le_bytes([fixed[46], fixed[47]]);
+        let signal_info = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
         let trailing = r.left(0);
         Ok(Self {
             nr_sv_raw,
@@ -2349,10 +2480,11 @@ impl<'a> BaseVectorCart<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let n = u8::from_le_bytes(r.array("n")?);
-        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
+        let fixed: &[u8; 8] = r.run(&[("tow", 4), ("wnc", 2), ("n", 1), ("sb_length", 1)])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let n = fixed[6];
+        let sb_length = fixed[7];
         let vector_info =
             r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "vector_info", "sb_length")?;
         let trailing = r.rest();
@@ -2533,20 +2665,36 @@ impl<'a> PosCovCartesian<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_xx_raw = f32::from_le_bytes(r.array("cov_xx")?);
-        let cov_yy_raw = f32::from_le_bytes(r.array("cov_yy")?);
-        let cov_zz_raw = f32::from_le_bytes(r.array("cov_zz")?);
-        let cov_bb_raw = f32::from_le_bytes(r.array("cov_bb")?);
-        let cov_xy_raw = f32::from_le_bytes(r.array("cov_xy")?);
-        let cov_xz_raw = f32::from_le_bytes(r.array("cov_xz")?);
-        let cov_xb_raw = f32::from_le_bytes(r.array("cov_xb")?);
-        let cov_yz_raw = f32::from_le_bytes(r.array("cov_yz")?);
-        let cov_yb_raw = f32::from_le_bytes(r.array("cov_yb")?);
-        let cov_zb_raw = f32::from_le_bytes(r.array("cov_zb")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("cov_xx", 4),
+            ("cov_yy", 4),
+            ("cov_zz", 4),
+            ("cov_bb", 4),
+            ("cov_xy", 4),
+            ("cov_xz", 4),
+            ("cov_xb", 4),
+            ("cov_yz", 4),
+            ("cov_yb", 4),
+            ("cov_zb", 4),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let cov_xx_raw = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let cov_yy_raw = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let cov_zz_raw = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let cov_bb_raw = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let cov_xy_raw = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cov_xz_raw = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let cov_xb_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let cov_yz_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let cov_yb_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let cov_zb_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -2836,20 +2984,36 @@ impl<'a> PosCovGeodetic<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_latlat_raw = f32::from_le_bytes(r.array("cov_latlat")?);
-        let cov_lonlon_raw = f32::from_le_bytes(r.array("cov_lonlon")?);
-        let cov_hgthgt_raw = f32::from_le_bytes(r.array("cov_hgthgt")?);
-        let cov_bb_raw = f32::from_le_bytes(r.array("cov_bb")?);
-        let cov_latlon_raw = f32::from_le_bytes(r.array("cov_latlon")?);
-        let cov_lathgt_raw = f32::from_le_bytes(r.array("cov_lathgt")?);
-        let cov_latb_raw = f32::from_le_bytes(r.array("cov_latb")?);
-        let cov_lonhgt_raw = f32::from_le_bytes(r.array("cov_lonhgt")?);
-        let cov_lonb_raw = f32::from_le_bytes(r.array("cov_lonb")?);
-        let cov_hb_raw = f32::from_le_bytes(r.array("cov_hb")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("cov_latlat", 4),
+            ("cov_lonlon", 4),
+            ("cov_hgthgt", 4),
+            ("cov_bb", 4),
+            ("cov_latlon", 4),
+            ("cov_lathgt", 4),
+            ("cov_latb", 4),
+            ("cov_lonhgt", 4),
+            ("cov_lonb", 4),
+            ("cov_hb", 4),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let cov_latlat_raw = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let cov_lonlon_raw = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let cov_hgthgt_raw = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let cov_bb_raw = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let cov_latlon_raw = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cov_lathgt_raw = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let cov_latb_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let cov_lonhgt_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let cov_lonb_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let cov_hb_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -3139,20 +3303,36 @@ impl<'a> VelCovCartesian<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_vxvx_raw = f32::from_le_bytes(r.array("cov_vxvx")?);
-        let cov_vyvy_raw = f32::from_le_bytes(r.array("cov_vyvy")?);
-        let cov_vzvz_raw = f32::from_le_bytes(r.array("cov_vzvz")?);
-        let cov_dtdt_raw = f32::from_le_bytes(r.array("cov_dtdt")?);
-        let cov_vxvy_raw = f32::from_le_bytes(r.array("cov_vxvy")?);
-        let cov_vxvz_raw = f32::from_le_bytes(r.array("cov_vxvz")?);
-        let cov_vxdt_raw = f32::from_le_bytes(r.array("cov_vxdt")?);
-        let cov_vyvz_raw = f32::from_le_bytes(r.array("cov_vyvz")?);
-        let cov_vydt_raw = f32::from_le_bytes(r.array("cov_vydt")?);
-        let cov_vzdt_raw = f32::from_le_bytes(r.array("cov_vzdt")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("cov_vxvx", 4),
+            ("cov_vyvy", 4),
+            ("cov_vzvz", 4),
+            ("cov_dtdt", 4),
+            ("cov_vxvy", 4),
+            ("cov_vxvz", 4),
+            ("cov_vxdt", 4),
+            ("cov_vyvz", 4),
+            ("cov_vydt", 4),
+            ("cov_vzdt", 4),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let cov_vxvx_raw = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let cov_vyvy_raw = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let cov_vzvz_raw = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let cov_dtdt_raw = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let cov_vxvy_raw = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cov_vxvz_raw = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let cov_vxdt_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let cov_vyvz_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let cov_vydt_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let cov_vzdt_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -3442,20 +3622,36 @@ impl<'a> VelCovGeodetic<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_vnvn_raw = f32::from_le_bytes(r.array("cov_vnvn")?);
-        let cov_veve_raw = f32::from_le_bytes(r.array("cov_veve")?);
-        let cov_vuvu_raw = f32::from_le_bytes(r.array("cov_vuvu")?);
-        let cov_dtdt_raw = f32::from_le_bytes(r.array("cov_dtdt")?);
-        let cov_vnve_raw = f32::from_le_bytes(r.array("cov_vnve")?);
-        let cov_vnvu_raw = f32::from_le_bytes(r.array("cov_vnvu")?);
-        let cov_vndt_raw = f32::from_le_bytes(r.array("cov_vndt")?);
-        let cov_vevu_raw = f32::from_le_bytes(r.array("cov_vevu")?);
-        let cov_vedt_raw = f32::from_le_bytes(r.array("cov_vedt")?);
-        let cov_vudt_raw = f32::from_le_bytes(r.array("cov_vudt")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("mode", 1),
+            ("error", 1),
+            ("cov_vnvn", 4),
+            ("cov_veve", 4),
+            ("cov_vuvu", 4),
+            ("cov_dtdt", 4),
+            ("cov_vnve", 4),
+            ("cov_vnvu", 4),
+            ("cov_vndt", 4),
+            ("cov_vevu", 4),
+            ("cov_vedt", 4),
+            ("cov_vudt", 4),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let mode = fixed[6];
+        let error_raw = fixed[7];
+        let cov_vnvn_raw = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let cov_veve_raw = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let cov_vuvu_raw = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let cov_dtdt_raw = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let cov_vnve_raw = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cov_vnvu_raw = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let cov_vndt_raw = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let cov_vevu_raw = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let cov_vedt_raw = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let cov_vudt_raw = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -3649,11 +3845,12 @@ impl<'a> XppsOffset<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let sync_age = u8::from_le_bytes(r.array("sync_age")?);
-        let time_scale = u8::from_le_bytes(r.array("time_scale")?);
-        let offset = f32::from_le_bytes(r.array("offset")?);
+        let fixed: &[u8; 12] = r.run(&[("tow", 4), ("wnc", 2), ("sync_age", 1), ("time_scale", 1), ("offset", 4)])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let sync_age = fixed[6];
+        let time_scale = fixed[7];
+        let offset = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { tow_raw, wnc_raw, sync_age, time_scale, offset, trailing })
     }
@@ -3805,16 +4002,28 @@ impl<'a> ReceiverTime<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
-        let utc_year_raw = i8::from_le_bytes(r.array("utc_year")?);
-        let utc_month_raw = i8::from_le_bytes(r.array("utc_month")?);
-        let utc_day_raw = i8::from_le_bytes(r.array("utc_day")?);
-        let utc_hour_raw = i8::from_le_bytes(r.array("utc_hour")?);
-        let utc_min_raw = i8::from_le_bytes(r.array("utc_min")?);
-        let utc_sec_raw = i8::from_le_bytes(r.array("utc_sec")?);
-        let delta_ls_raw = i8::from_le_bytes(r.array("delta_ls")?);
-        let sync_level = u8::from_le_bytes(r.array("sync_level")?);
+        let fixed: &[u8; 14] = r.run(&[
+            ("tow", 4),
+            ("wnc", 2),
+            ("utc_year", 1),
+            ("utc_month", 1),
+            ("utc_day", 1),
+            ("utc_hour", 1),
+            ("utc_min", 1),
+            ("utc_sec", 1),
+            ("delta_ls", 1),
+            ("sync_level", 1),
+        ])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let utc_year_raw = i8::from_le_bytes([fixed[6]]);
+        let utc_month_raw = i8::from_le_bytes([fixed[7]]);
+        let utc_day_raw = i8::from_le_bytes([fixed[8]]);
+        let utc_hour_raw = i8::from_le_bytes([fixed[9]]);
+        let utc_min_raw = i8::from_le_bytes([fixed[10]]);
+        let utc_sec_raw = i8::from_le_bytes([fixed[11]]);
+        let delta_ls_raw = i8::from_le_bytes([fixed[12]]);
+        let sync_level = fixed[13];
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
@@ -3944,8 +4153,9 @@ impl<'a> EndOfPvt<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
-        let tow_raw = u32::from_le_bytes(r.array("tow")?);
-        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let fixed: &[u8; 6] = r.run(&[("tow", 4), ("wnc", 2)])?;
+        let tow_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let wnc_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
         let trailing = r.rest();
         Ok(Self { tow_raw, wnc_raw, trailing })
     }

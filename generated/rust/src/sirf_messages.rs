@@ -264,52 +264,102 @@ impl<'a> GnssNavSolution<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let solution_validity = u32::from_be_bytes(r.array("solution_validity")?);
-        let solution_info = u32::from_be_bytes(r.array("solution_info")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let tow_sub_ms = u32::from_be_bytes(r.array("tow_sub_ms")?);
-        let time_bias = i16::from_be_bytes(r.array("time_bias")?);
-        let time_accuracy = u8::from_be_bytes(r.array("time_accuracy")?);
-        let time_source = u8::from_be_bytes(r.array("time_source")?);
-        let year = u16::from_be_bytes(r.array("year")?);
-        let month = u8::from_be_bytes(r.array("month")?);
-        let day = u8::from_be_bytes(r.array("day")?);
-        let hour = u8::from_be_bytes(r.array("hour")?);
-        let minute = u8::from_be_bytes(r.array("minute")?);
-        let second_raw = u16::from_be_bytes(r.array("second")?);
-        let leap_seconds = u8::from_be_bytes(r.array("leap_seconds")?);
-        let datum = u8::from_be_bytes(r.array("datum")?);
-        let clock_bias = i64::from_be_bytes(r.array("clock_bias")?);
-        let clock_bias_error_raw = u32::from_be_bytes(r.array("clock_bias_error")?);
-        let clock_offset_raw = i32::from_be_bytes(r.array("clock_offset")?);
-        let clock_offset_error_raw = u32::from_be_bytes(r.array("clock_offset_error")?);
-        let lat_raw = i32::from_be_bytes(r.array("lat")?);
-        let lon_raw = i32::from_be_bytes(r.array("lon")?);
-        let alt_ellipsoid_raw = i32::from_be_bytes(r.array("alt_ellipsoid")?);
-        let alt_msl_raw = i32::from_be_bytes(r.array("alt_msl")?);
-        let sog_raw = u16::from_be_bytes(r.array("sog")?);
-        let cog_raw = u16::from_be_bytes(r.array("cog")?);
-        let climb_raw = i16::from_be_bytes(r.array("climb")?);
-        let heading_rate_raw = i16::from_be_bytes(r.array("heading_rate")?);
-        let distance_raw = u32::from_be_bytes(r.array("distance")?);
-        let heading_error_raw = u16::from_be_bytes(r.array("heading_error")?);
-        let distance_error_raw = u16::from_be_bytes(r.array("distance_error")?);
-        let ehpe_raw = u32::from_be_bytes(r.array("ehpe")?);
-        let evpe_raw = u32::from_be_bytes(r.array("evpe")?);
-        let ehve_raw = u16::from_be_bytes(r.array("ehve")?);
-        let gdop_raw = u8::from_be_bytes(r.array("gdop")?);
-        let pdop_raw = u8::from_be_bytes(r.array("pdop")?);
-        let hdop_raw = u8::from_be_bytes(r.array("hdop")?);
-        let vdop_raw = u8::from_be_bytes(r.array("vdop")?);
-        let tdop_raw = u8::from_be_bytes(r.array("tdop")?);
-        let num_svs = u8::from_be_bytes(r.array("num_svs")?);
-        let sv_list_1 = u32::from_be_bytes(r.array("sv_list_1")?);
-        let sv_list_2 = u32::from_be_bytes(r.array("sv_list_2")?);
-        let sv_list_3 = u32::from_be_bytes(r.array("sv_list_3")?);
-        let sv_list_4 = u32::from_be_bytes(r.array("sv_list_4")?);
-        let sv_list_5 = u32::from_be_bytes(r.array("sv_list_5")?);
-        let additional_info = u32::from_be_bytes(r.array("additional_info")?);
+        let fixed: &[u8; 124] = r.run(&[
+            ("solution_validity", 4),
+            ("solution_info", 4),
+            ("week", 2),
+            ("tow", 4),
+            ("tow_sub_ms", 4),
+            ("time_bias", 2),
+            ("time_accuracy", 1),
+            ("time_source", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 2),
+            ("leap_seconds", 1),
+            ("datum", 1),
+            ("clock_bias", 8),
+            ("clock_bias_error", 4),
+            ("clock_offset", 4),
+            ("clock_offset_error", 4),
+            ("lat", 4),
+            ("lon", 4),
+            ("alt_ellipsoid", 4),
+            ("alt_msl", 4),
+            ("sog", 2),
+            ("cog", 2),
+            ("climb", 2),
+            ("heading_rate", 2),
+            ("distance", 4),
+            ("heading_error", 2),
+            ("distance_error", 2),
+            ("ehpe", 4),
+            ("evpe", 4),
+            ("ehve", 2),
+            ("gdop", 1),
+            ("pdop", 1),
+            ("hdop", 1),
+            ("vdop", 1),
+            ("tdop", 1),
+            ("num_svs", 1),
+            ("sv_list_1", 4),
+            ("sv_list_2", 4),
+            ("sv_list_3", 4),
+            ("sv_list_4", 4),
+            ("sv_list_5", 4),
+            ("additional_info", 4),
+        ])?;
+        let solution_validity = u32::from_be_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let solution_info = u32::from_be_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let week = u16::from_be_bytes([fixed[8], fixed[9]]);
+        let tow_raw = u32::from_be_bytes([fixed[10], fixed[11], fixed[12], fixed[13]]);
+        let tow_sub_ms = u32::from_be_bytes([fixed[14], fixed[15], fixed[16], fixed[17]]);
+        let time_bias = i16::from_be_bytes([fixed[18], fixed[19]]);
+        let time_accuracy = fixed[20];
+        let time_source = fixed[21];
+        let year = u16::from_be_bytes([fixed[22], fixed[23]]);
+        let month = fixed[24];
+        let day = fixed[25];
+        let hour = fixed[26];
+        let minute = fixed[27];
+        let second_raw = u16::from_be_bytes([fixed[28], fixed[29]]);
+        let leap_seconds = fixed[30];
+        let datum = fixed[31];
+        let clock_bias = i64::from_be_bytes([
+            fixed[32], fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39],
+        ]);
+        let clock_bias_error_raw = u32::from_be_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let clock_offset_raw = i32::from_be_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let clock_offset_error_raw = u32::from_be_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let lat_raw = i32::from_be_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let lon_raw = i32::from_be_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let alt_ellipsoid_raw = i32::from_be_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let alt_msl_raw = i32::from_be_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let sog_raw = u16::from_be_bytes([fixed[68], fixed[69]]);
+        let cog_raw = u16::from_be_bytes([fixed[70], fixed[71]]);
+        let climb_raw = i16::from_be_bytes([fixed[72], fixed[73]]);
+        let heading_rate_raw = i16::from_be_bytes([fixed[74], fixed[75]]);
+        let distance_raw = u32::from_be_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let heading_error_raw = u16::from_be_bytes([fixed[80], fixed[81]]);
+        let distance_error_raw = u16::from_be_bytes([fixed[82], fixed[83]]);
+        let ehpe_raw = u32::from_be_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let evpe_raw = u32::from_be_bytes([fixed[88], fixed[89], fixed[90], fixed[91]]);
+        let ehve_raw = u16::from_be_bytes([fixed[92], fixed[93]]);
+        let gdop_raw = fixed[94];
+        let pdop_raw = fixed[95];
+        let hdop_raw = fixed[96];
+        let vdop_raw = fixed[97];
+        let tdop_raw = fixed[98];
+        let num_svs = fixed[99];
+        let sv_list_1 = u32::from_be_bytes([fixed[100], fixed[101], fixed[102], fixed[103]]);
+        let sv_list_2 = u32::from_be_bytes([fixed[104], fixed[105], fixed[106], fixed[107]]);
+        let sv_list_3 = u32::from_be_bytes([fixed[108], fixed[109], fixed[110], fixed[111]]);
+        let sv_list_4 = u32::from_be_bytes([fixed[112], fixed[113], fixed[114], fixed[115]]);
+        let sv_list_5 = u32::from_be_bytes([fixed[116], fixed[117], fixed[118], fixed[119]]);
+        let additional_info = u32::from_be_bytes([fixed[120], fixed[121], fixed[122], fixed[123]]);
         let trailing = r.rest();
         Ok(Self {
             solution_validity,
@@ -697,18 +747,32 @@ impl<'a> MeasuredNav<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let x = i32::from_be_bytes(r.array("x")?);
-        let y = i32::from_be_bytes(r.array("y")?);
-        let z = i32::from_be_bytes(r.array("z")?);
-        let vx_raw = i16::from_be_bytes(r.array("vx")?);
-        let vy_raw = i16::from_be_bytes(r.array("vy")?);
-        let vz_raw = i16::from_be_bytes(r.array("vz")?);
-        let mode1 = u8::from_be_bytes(r.array("mode1")?);
-        let hdop_raw = u8::from_be_bytes(r.array("hdop")?);
-        let mode2 = u8::from_be_bytes(r.array("mode2")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let num_svs = u8::from_be_bytes(r.array("num_svs")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("x", 4),
+            ("y", 4),
+            ("z", 4),
+            ("vx", 2),
+            ("vy", 2),
+            ("vz", 2),
+            ("mode1", 1),
+            ("hdop", 1),
+            ("mode2", 1),
+            ("week", 2),
+            ("tow", 4),
+            ("num_svs", 1),
+        ])?;
+        let x = i32::from_be_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let y = i32::from_be_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let z = i32::from_be_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let vx_raw = i16::from_be_bytes([fixed[12], fixed[13]]);
+        let vy_raw = i16::from_be_bytes([fixed[14], fixed[15]]);
+        let vz_raw = i16::from_be_bytes([fixed[16], fixed[17]]);
+        let mode1 = fixed[18];
+        let hdop_raw = fixed[19];
+        let mode2 = fixed[20];
+        let week = u16::from_be_bytes([fixed[21], fixed[22]]);
+        let tow_raw = u32::from_be_bytes([fixed[23], fixed[24], fixed[25], fixed[26]]);
+        let num_svs = fixed[27];
         let channels = r.group(Some(12), 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { x, y, z, vx_raw, vy_raw, vz_raw, mode1, hdop_raw, mode2, week, tow_raw, num_svs, channels, trailing })
@@ -981,9 +1045,10 @@ impl<'a> TrackerData<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let week = i16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let num_channels = u8::from_be_bytes(r.array("num_channels")?);
+        let fixed: &[u8; 7] = r.run(&[("week", 2), ("tow", 4), ("num_channels", 1)])?;
+        let week = i16::from_be_bytes([fixed[0], fixed[1]]);
+        let tow_raw = u32::from_be_bytes([fixed[2], fixed[3], fixed[4], fixed[5]]);
+        let num_channels = fixed[6];
         let channels = r.group(None, 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { week, tow_raw, num_channels, channels, trailing })
@@ -1104,12 +1169,14 @@ impl<'a> ClockStatus<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let num_svs = u8::from_be_bytes(r.array("num_svs")?);
-        let drift = u32::from_be_bytes(r.array("drift")?);
-        let bias = u32::from_be_bytes(r.array("bias")?);
-        let gps_time = u32::from_be_bytes(r.array("gps_time")?);
+        let fixed: &[u8; 19] =
+            r.run(&[("week", 2), ("tow", 4), ("num_svs", 1), ("drift", 4), ("bias", 4), ("gps_time", 4)])?;
+        let week = u16::from_be_bytes([fixed[0], fixed[1]]);
+        let tow_raw = u32::from_be_bytes([fixed[2], fixed[3], fixed[4], fixed[5]]);
+        let num_svs = fixed[6];
+        let drift = u32::from_be_bytes([fixed[7], fixed[8], fixed[9], fixed[10]]);
+        let bias = u32::from_be_bytes([fixed[11], fixed[12], fixed[13], fixed[14]]);
+        let gps_time = u32::from_be_bytes([fixed[15], fixed[16], fixed[17], fixed[18]]);
         let trailing = r.rest();
         Ok(Self { week, tow_raw, num_svs, drift, bias, gps_time, trailing })
     }
@@ -1190,10 +1257,12 @@ impl<'a> CpuThroughput<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let seg_stat_max_raw = u16::from_be_bytes(r.array("seg_stat_max")?);
-        let seg_stat_lat_raw = u16::from_be_bytes(r.array("seg_stat_lat")?);
-        let avg_trk_time_raw = u16::from_be_bytes(r.array("avg_trk_time")?);
-        let last_ms = u16::from_be_bytes(r.array("last_ms")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("seg_stat_max", 2), ("seg_stat_lat", 2), ("avg_trk_time", 2), ("last_ms", 2)])?;
+        let seg_stat_max_raw = u16::from_be_bytes([fixed[0], fixed[1]]);
+        let seg_stat_lat_raw = u16::from_be_bytes([fixed[2], fixed[3]]);
+        let avg_trk_time_raw = u16::from_be_bytes([fixed[4], fixed[5]]);
+        let last_ms = u16::from_be_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { seg_stat_max_raw, seg_stat_lat_raw, avg_trk_time_raw, last_ms, trailing })
     }
@@ -1680,41 +1749,78 @@ impl<'a> GeodeticNav<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let nav_valid = u16::from_be_bytes(r.array("nav_valid")?);
-        let nav_type = u16::from_be_bytes(r.array("nav_type")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let year = u16::from_be_bytes(r.array("year")?);
-        let month = u8::from_be_bytes(r.array("month")?);
-        let day = u8::from_be_bytes(r.array("day")?);
-        let hour = u8::from_be_bytes(r.array("hour")?);
-        let minute = u8::from_be_bytes(r.array("minute")?);
-        let second_raw = u16::from_be_bytes(r.array("second")?);
-        let sat_id_list = u32::from_be_bytes(r.array("sat_id_list")?);
-        let lat_raw = i32::from_be_bytes(r.array("lat")?);
-        let lon_raw = i32::from_be_bytes(r.array("lon")?);
-        let alt_ellipsoid_raw = i32::from_be_bytes(r.array("alt_ellipsoid")?);
-        let alt_msl_raw = i32::from_be_bytes(r.array("alt_msl")?);
-        let datum = u8::from_be_bytes(r.array("datum")?);
-        let sog_raw = u16::from_be_bytes(r.array("sog")?);
-        let cog_raw = u16::from_be_bytes(r.array("cog")?);
-        let mag_var = i16::from_be_bytes(r.array("mag_var")?);
-        let climb_raw = i16::from_be_bytes(r.array("climb")?);
-        let heading_rate_raw = i16::from_be_bytes(r.array("heading_rate")?);
-        let ehpe_raw = u32::from_be_bytes(r.array("ehpe")?);
-        let evpe_raw = u32::from_be_bytes(r.array("evpe")?);
-        let ete_raw = u32::from_be_bytes(r.array("ete")?);
-        let ehve_raw = u16::from_be_bytes(r.array("ehve")?);
-        let clock_bias_raw = i32::from_be_bytes(r.array("clock_bias")?);
-        let clock_bias_error_raw = u32::from_be_bytes(r.array("clock_bias_error")?);
-        let clock_drift_raw = i32::from_be_bytes(r.array("clock_drift")?);
-        let clock_drift_error_raw = u32::from_be_bytes(r.array("clock_drift_error")?);
-        let distance = u32::from_be_bytes(r.array("distance")?);
-        let distance_error = u16::from_be_bytes(r.array("distance_error")?);
-        let heading_error_raw = u16::from_be_bytes(r.array("heading_error")?);
-        let num_svs = u8::from_be_bytes(r.array("num_svs")?);
-        let hdop_raw = u8::from_be_bytes(r.array("hdop")?);
-        let additional_mode = u8::from_be_bytes(r.array("additional_mode")?);
+        let fixed: &[u8; 90] = r.run(&[
+            ("nav_valid", 2),
+            ("nav_type", 2),
+            ("week", 2),
+            ("tow", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 2),
+            ("sat_id_list", 4),
+            ("lat", 4),
+            ("lon", 4),
+            ("alt_ellipsoid", 4),
+            ("alt_msl", 4),
+            ("datum", 1),
+            ("sog", 2),
+            ("cog", 2),
+            ("mag_var", 2),
+            ("climb", 2),
+            ("heading_rate", 2),
+            ("ehpe", 4),
+            ("evpe", 4),
+            ("ete", 4),
+            ("ehve", 2),
+            ("clock_bias", 4),
+            ("clock_bias_error", 4),
+            ("clock_drift", 4),
+            ("clock_drift_error", 4),
+            ("distance", 4),
+            ("distance_error", 2),
+            ("heading_error", 2),
+            ("num_svs", 1),
+            ("hdop", 1),
+            ("additional_mode", 1),
+        ])?;
+        let nav_valid = u16::from_be_bytes([fixed[0], fixed[1]]);
+        let nav_type = u16::from_be_bytes([fixed[2], fixed[3]]);
+        let week = u16::from_be_bytes([fixed[4], fixed[5]]);
+        let tow_raw = u32::from_be_bytes([fixed[6], fixed[7], fixed[8], fixed[9]]);
+        let year = u16::from_be_bytes([fixed[10], fixed[11]]);
+        let month = fixed[12];
+        let day = fixed[13];
+        let hour = fixed[14];
+        let minute = fixed[15];
+        let second_raw = u16::from_be_bytes([fixed[16], fixed[17]]);
+        let sat_id_list = u32::from_be_bytes([fixed[18], fixed[19], fixed[20], fixed[21]]);
+        let lat_raw = i32::from_be_bytes([fixed[22], fixed[23], fixed[24], fixed[25]]);
+        let lon_raw = i32::from_be_bytes([fixed[26], fixed[27], fixed[28], fixed[29]]);
+        let alt_ellipsoid_raw = i32::from_be_bytes([fixed[30], fixed[31], fixed[32], fixed[33]]);
+        let alt_msl_raw = i32::from_be_bytes([fixed[34], fixed[35], fixed[36], fixed[37]]);
+        let datum = fixed[38];
+        let sog_raw = u16::from_be_bytes([fixed[39], fixed[40]]);
+        let cog_raw = u16::from_be_bytes([fixed[41], fixed[42]]);
+        let mag_var = i16::from_be_bytes([fixed[43], fixed[44]]);
+        let climb_raw = i16::from_be_bytes([fixed[45], fixed[46]]);
+        let heading_rate_raw = i16::from_be_bytes([fixed[47], fixed[48]]);
+        let ehpe_raw = u32::from_be_bytes([fixed[49], fixed[50], fixed[51], fixed[52]]);
+        let evpe_raw = u32::from_be_bytes([fixed[53], fixed[54], fixed[55], fixed[56]]);
+        let ete_raw = u32::from_be_bytes([fixed[57], fixed[58], fixed[59], fixed[60]]);
+        let ehve_raw = u16::from_be_bytes([fixed[61], fixed[62]]);
+        let clock_bias_raw = i32::from_be_bytes([fixed[63], fixed[64], fixed[65], fixed[66]]);
+        let clock_bias_error_raw = u32::from_be_bytes([fixed[67], fixed[68], fixed[69], fixed[70]]);
+        let clock_drift_raw = i32::from_be_bytes([fixed[71], fixed[72], fixed[73], fixed[74]]);
+        let clock_drift_error_raw = u32::from_be_bytes([fixed[75], fixed[76], fixed[77], fixed[78]]);
+        let distance = u32::from_be_bytes([fixed[79], fixed[80], fixed[81], fixed[82]]);
+        let distance_error = u16::from_be_bytes([fixed[83], fixed[84]]);
+        let heading_error_raw = u16::from_be_bytes([fixed[85], fixed[86]]);
+        let num_svs = fixed[87];
+        let hdop_raw = fixed[88];
+        let additional_mode = fixed[89];
         let trailing = r.rest();
         Ok(Self {
             nav_valid,
@@ -1930,16 +2036,28 @@ impl<'a> PpsTime<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SIRF");
-        let hour = u8::from_be_bytes(r.array("hour")?);
-        let minute = u8::from_be_bytes(r.array("minute")?);
-        let second = u8::from_be_bytes(r.array("second")?);
-        let day = u8::from_be_bytes(r.array("day")?);
-        let month = u8::from_be_bytes(r.array("month")?);
-        let year = u16::from_be_bytes(r.array("year")?);
-        let utc_offset_int = i16::from_be_bytes(r.array("utc_offset_int")?);
-        let utc_offset_frac = u32::from_be_bytes(r.array("utc_offset_frac")?);
-        let status = u8::from_be_bytes(r.array("status")?);
-        let reserved0 = u32::from_be_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 18] = r.run(&[
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("day", 1),
+            ("month", 1),
+            ("year", 2),
+            ("utc_offset_int", 2),
+            ("utc_offset_frac", 4),
+            ("status", 1),
+            ("reserved0", 4),
+        ])?;
+        let hour = fixed[0];
+        let minute = fixed[1];
+        let second = fixed[2];
+        let day = fixed[3];
+        let month = fixed[4];
+        let year = u16::from_be_bytes([fixed[5], fixed[6]]);
+        let utc_offset_int = i16::from_be_bytes([fixed[7], fixed[8]]);
+        let utc_offset_frac = u32::from_be_bytes([fixed[9], fixed[10], fixed[11], fixed[12]]);
+        let status = fixed[13];
+        let reserved0 = u32::from_be_bytes([fixed[14], fixed[15], fixed[16], fixed[17]]);
         let trailing = r.rest();
         Ok(Self {
             hour,

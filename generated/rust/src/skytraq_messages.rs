@@ -103,8 +103,9 @@ impl<'a> ConfigMessageType<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let r#type = u8::from_be_bytes(r.array("type")?);
-        let attributes = u8::from_be_bytes(r.array("attributes")?);
+        let fixed: &[u8; 2] = r.run(&[("type", 1), ("attributes", 1)])?;
+        let r#type = fixed[0];
+        let attributes = fixed[1];
         let trailing = r.rest();
         Ok(Self { r#type, attributes, trailing })
     }
@@ -173,16 +174,28 @@ impl<'a> SwVersion<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let software_type = u8::from_be_bytes(r.array("software_type")?);
-        let kernel_x = u16::from_be_bytes(r.array("kernel_x")?);
-        let kernel_y = u8::from_be_bytes(r.array("kernel_y")?);
-        let kernel_z = u8::from_be_bytes(r.array("kernel_z")?);
-        let odm_x = u16::from_be_bytes(r.array("odm_x")?);
-        let odm_y = u8::from_be_bytes(r.array("odm_y")?);
-        let odm_z = u8::from_be_bytes(r.array("odm_z")?);
-        let revision_year = u16::from_be_bytes(r.array("revision_year")?);
-        let revision_month = u8::from_be_bytes(r.array("revision_month")?);
-        let revision_day = u8::from_be_bytes(r.array("revision_day")?);
+        let fixed: &[u8; 13] = r.run(&[
+            ("software_type", 1),
+            ("kernel_x", 2),
+            ("kernel_y", 1),
+            ("kernel_z", 1),
+            ("odm_x", 2),
+            ("odm_y", 1),
+            ("odm_z", 1),
+            ("revision_year", 2),
+            ("revision_month", 1),
+            ("revision_day", 1),
+        ])?;
+        let software_type = fixed[0];
+        let kernel_x = u16::from_be_bytes([fixed[1], fixed[2]]);
+        let kernel_y = fixed[3];
+        let kernel_z = fixed[4];
+        let odm_x = u16::from_be_bytes([fixed[5], fixed[6]]);
+        let odm_y = fixed[7];
+        let odm_z = fixed[8];
+        let revision_year = u16::from_be_bytes([fixed[9], fixed[10]]);
+        let revision_month = fixed[11];
+        let revision_day = fixed[12];
         let trailing = r.rest();
         Ok(Self {
             software_type,
@@ -503,25 +516,46 @@ impl<'a> NavData<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let fix_mode = u8::from_be_bytes(r.array("fix_mode")?);
-        let num_sv = u8::from_be_bytes(r.array("num_sv")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow_raw = u32::from_be_bytes(r.array("tow")?);
-        let lat_raw = i32::from_be_bytes(r.array("lat")?);
-        let lon_raw = i32::from_be_bytes(r.array("lon")?);
-        let ellipsoid_alt_raw = i32::from_be_bytes(r.array("ellipsoid_alt")?);
-        let msl_alt_raw = i32::from_be_bytes(r.array("msl_alt")?);
-        let gdop_raw = u16::from_be_bytes(r.array("gdop")?);
-        let pdop_raw = u16::from_be_bytes(r.array("pdop")?);
-        let hdop_raw = u16::from_be_bytes(r.array("hdop")?);
-        let vdop_raw = u16::from_be_bytes(r.array("vdop")?);
-        let tdop_raw = u16::from_be_bytes(r.array("tdop")?);
-        let ecef_x_raw = i32::from_be_bytes(r.array("ecef_x")?);
-        let ecef_y_raw = i32::from_be_bytes(r.array("ecef_y")?);
-        let ecef_z_raw = i32::from_be_bytes(r.array("ecef_z")?);
-        let ecef_vx_raw = i32::from_be_bytes(r.array("ecef_vx")?);
-        let ecef_vy_raw = i32::from_be_bytes(r.array("ecef_vy")?);
-        let ecef_vz_raw = i32::from_be_bytes(r.array("ecef_vz")?);
+        let fixed: &[u8; 58] = r.run(&[
+            ("fix_mode", 1),
+            ("num_sv", 1),
+            ("week", 2),
+            ("tow", 4),
+            ("lat", 4),
+            ("lon", 4),
+            ("ellipsoid_alt", 4),
+            ("msl_alt", 4),
+            ("gdop", 2),
+            ("pdop", 2),
+            ("hdop", 2),
+            ("vdop", 2),
+            ("tdop", 2),
+            ("ecef_x", 4),
+            ("ecef_y", 4),
+            ("ecef_z", 4),
+            ("ecef_vx", 4),
+            ("ecef_vy", 4),
+            ("ecef_vz", 4),
+        ])?;
+        let fix_mode = fixed[0];
+        let num_sv = fixed[1];
+        let week = u16::from_be_bytes([fixed[2], fixed[3]]);
+        let tow_raw = u32::from_be_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat_raw = i32::from_be_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let lon_raw = i32::from_be_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ellipsoid_alt_raw = i32::from_be_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let msl_alt_raw = i32::from_be_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let gdop_raw = u16::from_be_bytes([fixed[24], fixed[25]]);
+        let pdop_raw = u16::from_be_bytes([fixed[26], fixed[27]]);
+        let hdop_raw = u16::from_be_bytes([fixed[28], fixed[29]]);
+        let vdop_raw = u16::from_be_bytes([fixed[30], fixed[31]]);
+        let tdop_raw = u16::from_be_bytes([fixed[32], fixed[33]]);
+        let ecef_x_raw = i32::from_be_bytes([fixed[34], fixed[35], fixed[36], fixed[37]]);
+        let ecef_y_raw = i32::from_be_bytes([fixed[38], fixed[39], fixed[40], fixed[41]]);
+        let ecef_z_raw = i32::from_be_bytes([fixed[42], fixed[43], fixed[44], fixed[45]]);
+        let ecef_vx_raw = i32::from_be_bytes([fixed[46], fixed[47], fixed[48], fixed[49]]);
+        let ecef_vy_raw = i32::from_be_bytes([fixed[50], fixed[51], fixed[52], fixed[53]]);
+        let ecef_vz_raw = i32::from_be_bytes([fixed[54], fixed[55], fixed[56], fixed[57]]);
         let trailing = r.rest();
         Ok(Self {
             fix_mode,
@@ -649,10 +683,11 @@ impl<'a> MeasTime<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let iod = u8::from_be_bytes(r.array("iod")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow = u32::from_be_bytes(r.array("tow")?);
-        let period = u16::from_be_bytes(r.array("period")?);
+        let fixed: &[u8; 9] = r.run(&[("iod", 1), ("week", 2), ("tow", 4), ("period", 2)])?;
+        let iod = fixed[0];
+        let week = u16::from_be_bytes([fixed[1], fixed[2]]);
+        let tow = u32::from_be_bytes([fixed[3], fixed[4], fixed[5], fixed[6]]);
+        let period = u16::from_be_bytes([fixed[7], fixed[8]]);
         let trailing = r.rest();
         Ok(Self { iod, week, tow, period, trailing })
     }
@@ -808,8 +843,9 @@ impl<'a> RawMeas<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let iod = u8::from_be_bytes(r.array("iod")?);
-        let num_meas = u8::from_be_bytes(r.array("num_meas")?);
+        let fixed: &[u8; 2] = r.run(&[("iod", 1), ("num_meas", 1)])?;
+        let iod = fixed[0];
+        let num_meas = fixed[1];
         let meas = r.group(Some(usize::from(num_meas)), 0, 65535, 0, "meas")?;
         let trailing = r.rest();
         Ok(Self { iod, num_meas, meas, trailing })
@@ -1010,8 +1046,9 @@ impl<'a> SvChStatus<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let iod = u8::from_be_bytes(r.array("iod")?);
-        let num_sv = u8::from_be_bytes(r.array("num_sv")?);
+        let fixed: &[u8; 2] = r.run(&[("iod", 1), ("num_sv", 1)])?;
+        let iod = fixed[0];
+        let num_sv = fixed[1];
         let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { iod, num_sv, svs, trailing })
@@ -1097,23 +1134,51 @@ impl<'a> RcvState<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let iod = u8::from_be_bytes(r.array("iod")?);
-        let nav_state = u8::from_be_bytes(r.array("nav_state")?);
-        let week = u16::from_be_bytes(r.array("week")?);
-        let tow = f64::from_be_bytes(r.array("tow")?);
-        let ecef_x = f64::from_be_bytes(r.array("ecef_x")?);
-        let ecef_y = f64::from_be_bytes(r.array("ecef_y")?);
-        let ecef_z = f64::from_be_bytes(r.array("ecef_z")?);
-        let ecef_vx = f32::from_be_bytes(r.array("ecef_vx")?);
-        let ecef_vy = f32::from_be_bytes(r.array("ecef_vy")?);
-        let ecef_vz = f32::from_be_bytes(r.array("ecef_vz")?);
-        let clock_bias = f64::from_be_bytes(r.array("clock_bias")?);
-        let clock_drift = f32::from_be_bytes(r.array("clock_drift")?);
-        let gdop = f32::from_be_bytes(r.array("gdop")?);
-        let pdop = f32::from_be_bytes(r.array("pdop")?);
-        let hdop = f32::from_be_bytes(r.array("hdop")?);
-        let vdop = f32::from_be_bytes(r.array("vdop")?);
-        let tdop = f32::from_be_bytes(r.array("tdop")?);
+        let fixed: &[u8; 80] = r.run(&[
+            ("iod", 1),
+            ("nav_state", 1),
+            ("week", 2),
+            ("tow", 8),
+            ("ecef_x", 8),
+            ("ecef_y", 8),
+            ("ecef_z", 8),
+            ("ecef_vx", 4),
+            ("ecef_vy", 4),
+            ("ecef_vz", 4),
+            ("clock_bias", 8),
+            ("clock_drift", 4),
+            ("gdop", 4),
+            ("pdop", 4),
+            ("hdop", 4),
+            ("vdop", 4),
+            ("tdop", 4),
+        ])?;
+        let iod = fixed[0];
+        let nav_state = fixed[1];
+        let week = u16::from_be_bytes([fixed[2], fixed[3]]);
+        let tow =
+            f64::from_be_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_x = f64::from_be_bytes([
+            fixed[12], fixed[13], fixed[14], fixed[15], fixed[16], fixed[17], fixed[18], fixed[19],
+        ]);
+        let ecef_y = f64::from_be_bytes([
+            fixed[20], fixed[21], fixed[22], fixed[23], fixed[24], fixed[25], fixed[26], fixed[27],
+        ]);
+        let ecef_z = f64::from_be_bytes([
+            fixed[28], fixed[29], fixed[30], fixed[31], fixed[32], fixed[33], fixed[34], fixed[35],
+        ]);
+        let ecef_vx = f32::from_be_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let ecef_vy = f32::from_be_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let ecef_vz = f32::from_be_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let clock_bias = f64::from_be_bytes([
+            fixed[48], fixed[49], fixed[50], fixed[51], fixed[52], fixed[53], fixed[54], fixed[55],
+        ]);
+        let clock_drift = f32::from_be_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let gdop = f32::from_be_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let pdop = f32::from_be_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let hdop = f32::from_be_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let vdop = f32::from_be_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let tdop = f32::from_be_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
         let trailing = r.rest();
         Ok(Self {
             iod,
@@ -1217,9 +1282,10 @@ impl<'a> GpsSubframe<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SKYTRAQ");
-        let svid = u8::from_be_bytes(r.array("svid")?);
-        let subframe = u8::from_be_bytes(r.array("subframe")?);
-        let words = r.bytes(30, "words")?;
+        let fixed: &[u8; 32] = r.run(&[("svid", 1), ("subframe", 1), ("words", 30)])?;
+        let svid = fixed[0];
+        let subframe = fixed[1];
+        let words = &fixed[2..32];
         let trailing = r.rest();
         Ok(Self { svid, subframe, words, trailing })
     }

@@ -160,8 +160,9 @@ impl<'a> AckAck<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let cls_id = u8::from_le_bytes(r.array("cls_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let fixed: &[u8; 2] = r.run(&[("cls_id", 1), ("msg_id", 1)])?;
+        let cls_id = fixed[0];
+        let msg_id = fixed[1];
         let trailing = r.rest();
         Ok(Self { cls_id, msg_id, trailing })
     }
@@ -216,8 +217,9 @@ impl<'a> AckNak<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let cls_id = u8::from_le_bytes(r.array("cls_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let fixed: &[u8; 2] = r.run(&[("cls_id", 1), ("msg_id", 1)])?;
+        let cls_id = fixed[0];
+        let msg_id = fixed[1];
         let trailing = r.rest();
         Ok(Self { cls_id, msg_id, trailing })
     }
@@ -395,8 +397,9 @@ impl<'a> AidAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let svid = u32::from_le_bytes(r.array("svid")?);
-        let week = u32::from_le_bytes(r.array("week")?);
+        let fixed: &[u8; 8] = r.run(&[("svid", 4), ("week", 4)])?;
+        let svid = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let week = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let dwrd = r.group(Some(8), 0, 65535, 0, "dwrd")?;
         let trailing = r.rest();
         Ok(Self { svid, week, dwrd, trailing })
@@ -454,8 +457,9 @@ impl<'a> AidAlmEmpty<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let svid = u32::from_le_bytes(r.array("svid")?);
-        let week = u32::from_le_bytes(r.array("week")?);
+        let fixed: &[u8; 8] = r.run(&[("svid", 4), ("week", 4)])?;
+        let svid = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let week = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { svid, week, trailing })
     }
@@ -615,10 +619,11 @@ impl<'a> AidAop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let data = r.bytes(64, "data")?;
+        let fixed: &[u8; 68] = r.run(&[("gnss_id", 1), ("sv_id", 1), ("reserved1", 2), ("data", 64)])?;
+        let gnss_id_raw = fixed[0];
+        let sv_id = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let data = &fixed[4..68];
         let trailing = r.rest();
         Ok(Self { gnss_id_raw, sv_id, reserved1, data, trailing })
     }
@@ -826,32 +831,60 @@ impl<'a> AidEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let svid = u32::from_le_bytes(r.array("svid")?);
-        let how = u32::from_le_bytes(r.array("how")?);
-        let sf1d1 = u32::from_le_bytes(r.array("sf1d1")?);
-        let sf1d2 = u32::from_le_bytes(r.array("sf1d2")?);
-        let sf1d3 = u32::from_le_bytes(r.array("sf1d3")?);
-        let sf1d4 = u32::from_le_bytes(r.array("sf1d4")?);
-        let sf1d5 = u32::from_le_bytes(r.array("sf1d5")?);
-        let sf1d6 = u32::from_le_bytes(r.array("sf1d6")?);
-        let sf1d7 = u32::from_le_bytes(r.array("sf1d7")?);
-        let sf1d8 = u32::from_le_bytes(r.array("sf1d8")?);
-        let sf2d1 = u32::from_le_bytes(r.array("sf2d1")?);
-        let sf2d2 = u32::from_le_bytes(r.array("sf2d2")?);
-        let sf2d3 = u32::from_le_bytes(r.array("sf2d3")?);
-        let sf2d4 = u32::from_le_bytes(r.array("sf2d4")?);
-        let sf2d5 = u32::from_le_bytes(r.array("sf2d5")?);
-        let sf2d6 = u32::from_le_bytes(r.array("sf2d6")?);
-        let sf2d7 = u32::from_le_bytes(r.array("sf2d7")?);
-        let sf2d8 = u32::from_le_bytes(r.array("sf2d8")?);
-        let sf3d1 = u32::from_le_bytes(r.array("sf3d1")?);
-        let sf3d2 = u32::from_le_bytes(r.array("sf3d2")?);
-        let sf3d3 = u32::from_le_bytes(r.array("sf3d3")?);
-        let sf3d4 = u32::from_le_bytes(r.array("sf3d4")?);
-        let sf3d5 = u32::from_le_bytes(r.array("sf3d5")?);
-        let sf3d6 = u32::from_le_bytes(r.array("sf3d6")?);
-        let sf3d7 = u32::from_le_bytes(r.array("sf3d7")?);
-        let sf3d8 = u32::from_le_bytes(r.array("sf3d8")?);
+        let fixed: &[u8; 104] = r.run(&[
+            ("svid", 4),
+            ("how", 4),
+            ("sf1d1", 4),
+            ("sf1d2", 4),
+            ("sf1d3", 4),
+            ("sf1d4", 4),
+            ("sf1d5", 4),
+            ("sf1d6", 4),
+            ("sf1d7", 4),
+            ("sf1d8", 4),
+            ("sf2d1", 4),
+            ("sf2d2", 4),
+            ("sf2d3", 4),
+            ("sf2d4", 4),
+            ("sf2d5", 4),
+            ("sf2d6", 4),
+            ("sf2d7", 4),
+            ("sf2d8", 4),
+            ("sf3d1", 4),
+            ("sf3d2", 4),
+            ("sf3d3", 4),
+            ("sf3d4", 4),
+            ("sf3d5", 4),
+            ("sf3d6", 4),
+            ("sf3d7", 4),
+            ("sf3d8", 4),
+        ])?;
+        let svid = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let how = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let sf1d1 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let sf1d2 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let sf1d3 = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let sf1d4 = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let sf1d5 = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let sf1d6 = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let sf1d7 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let sf1d8 = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let sf2d1 = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let sf2d2 = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let sf2d3 = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let sf2d4 = u32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let sf2d5 = u32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let sf2d6 = u32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let sf2d7 = u32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let sf2d8 = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let sf3d1 = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let sf3d2 = u32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let sf3d3 = u32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let sf3d4 = u32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let sf3d5 = u32::from_le_bytes([fixed[88], fixed[89], fixed[90], fixed[91]]);
+        let sf3d6 = u32::from_le_bytes([fixed[92], fixed[93], fixed[94], fixed[95]]);
+        let sf3d7 = u32::from_le_bytes([fixed[96], fixed[97], fixed[98], fixed[99]]);
+        let sf3d8 = u32::from_le_bytes([fixed[100], fixed[101], fixed[102], fixed[103]]);
         let trailing = r.rest();
         Ok(Self {
             svid,
@@ -982,8 +1015,9 @@ impl<'a> AidEphEmpty<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let svid = u32::from_le_bytes(r.array("svid")?);
-        let how = u32::from_le_bytes(r.array("how")?);
+        let fixed: &[u8; 8] = r.run(&[("svid", 4), ("how", 4)])?;
+        let svid = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let how = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { svid, how, trailing })
     }
@@ -1142,25 +1176,49 @@ impl<'a> AidHui<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let health = u32::from_le_bytes(r.array("health")?);
-        let utc_a0 = f64::from_le_bytes(r.array("utc_a0")?);
-        let utc_a1 = f64::from_le_bytes(r.array("utc_a1")?);
-        let utc_tow = i32::from_le_bytes(r.array("utc_tow")?);
-        let utc_wnt = i16::from_le_bytes(r.array("utc_wnt")?);
-        let utc_ls = i16::from_le_bytes(r.array("utc_ls")?);
-        let utc_wnf = i16::from_le_bytes(r.array("utc_wnf")?);
-        let utc_dns = i16::from_le_bytes(r.array("utc_dns")?);
-        let utc_lsf = i16::from_le_bytes(r.array("utc_lsf")?);
-        let utc_spare = i16::from_le_bytes(r.array("utc_spare")?);
-        let klob_a0 = f32::from_le_bytes(r.array("klob_a0")?);
-        let klob_a1 = f32::from_le_bytes(r.array("klob_a1")?);
-        let klob_a2 = f32::from_le_bytes(r.array("klob_a2")?);
-        let klob_a3 = f32::from_le_bytes(r.array("klob_a3")?);
-        let klob_b0 = f32::from_le_bytes(r.array("klob_b0")?);
-        let klob_b1 = f32::from_le_bytes(r.array("klob_b1")?);
-        let klob_b2 = f32::from_le_bytes(r.array("klob_b2")?);
-        let klob_b3 = f32::from_le_bytes(r.array("klob_b3")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 72] = r.run(&[
+            ("health", 4),
+            ("utc_a0", 8),
+            ("utc_a1", 8),
+            ("utc_tow", 4),
+            ("utc_wnt", 2),
+            ("utc_ls", 2),
+            ("utc_wnf", 2),
+            ("utc_dns", 2),
+            ("utc_lsf", 2),
+            ("utc_spare", 2),
+            ("klob_a0", 4),
+            ("klob_a1", 4),
+            ("klob_a2", 4),
+            ("klob_a3", 4),
+            ("klob_b0", 4),
+            ("klob_b1", 4),
+            ("klob_b2", 4),
+            ("klob_b3", 4),
+            ("flags", 4),
+        ])?;
+        let health = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let utc_a0 =
+            f64::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let utc_a1 = f64::from_le_bytes([
+            fixed[12], fixed[13], fixed[14], fixed[15], fixed[16], fixed[17], fixed[18], fixed[19],
+        ]);
+        let utc_tow = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let utc_wnt = i16::from_le_bytes([fixed[24], fixed[25]]);
+        let utc_ls = i16::from_le_bytes([fixed[26], fixed[27]]);
+        let utc_wnf = i16::from_le_bytes([fixed[28], fixed[29]]);
+        let utc_dns = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let utc_lsf = i16::from_le_bytes([fixed[32], fixed[33]]);
+        let utc_spare = i16::from_le_bytes([fixed[34], fixed[35]]);
+        let klob_a0 = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let klob_a1 = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let klob_a2 = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let klob_a3 = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let klob_b0 = f32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let klob_b1 = f32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let klob_b2 = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let klob_b3 = f32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let flags = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
         let trailing = r.rest();
         Ok(Self {
             health,
@@ -1437,19 +1495,34 @@ impl<'a> AidIni<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let ecef_x_or_lat = i32::from_le_bytes(r.array("ecef_x_or_lat")?);
-        let ecef_y_or_lon = i32::from_le_bytes(r.array("ecef_y_or_lon")?);
-        let ecef_z_or_alt = i32::from_le_bytes(r.array("ecef_z_or_alt")?);
-        let pos_acc = u32::from_le_bytes(r.array("pos_acc")?);
-        let tm_cfg = u16::from_le_bytes(r.array("tm_cfg")?);
-        let wn = u16::from_le_bytes(r.array("wn")?);
-        let tow = u32::from_le_bytes(r.array("tow")?);
-        let tow_ns = i32::from_le_bytes(r.array("tow_ns")?);
-        let t_acc_ms = u32::from_le_bytes(r.array("t_acc_ms")?);
-        let t_acc_ns = u32::from_le_bytes(r.array("t_acc_ns")?);
-        let clk_d_or_freq = i32::from_le_bytes(r.array("clk_d_or_freq")?);
-        let clk_d_acc_or_freq_acc = u32::from_le_bytes(r.array("clk_d_acc_or_freq_acc")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("ecef_x_or_lat", 4),
+            ("ecef_y_or_lon", 4),
+            ("ecef_z_or_alt", 4),
+            ("pos_acc", 4),
+            ("tm_cfg", 2),
+            ("wn", 2),
+            ("tow", 4),
+            ("tow_ns", 4),
+            ("t_acc_ms", 4),
+            ("t_acc_ns", 4),
+            ("clk_d_or_freq", 4),
+            ("clk_d_acc_or_freq_acc", 4),
+            ("flags", 4),
+        ])?;
+        let ecef_x_or_lat = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_y_or_lon = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_z_or_alt = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let pos_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let tm_cfg = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let wn = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let tow = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let tow_ns = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let t_acc_ms = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let t_acc_ns = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let clk_d_or_freq = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let clk_d_acc_or_freq_acc = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let flags = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             ecef_x_or_lat,
@@ -1671,8 +1744,9 @@ impl<'a> CfgAnt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let pins = u16::from_le_bytes(r.array("pins")?);
+        let fixed: &[u8; 4] = r.run(&[("flags", 2), ("pins", 2)])?;
+        let flags = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let pins = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { flags, pins, trailing })
     }
@@ -1830,12 +1904,20 @@ impl<'a> CfgBatch<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let buf_size = u16::from_le_bytes(r.array("buf_size")?);
-        let notif_thrs = u16::from_le_bytes(r.array("notif_thrs")?);
-        let pio_id = u8::from_le_bytes(r.array("pio_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[
+            ("version", 1),
+            ("flags", 1),
+            ("buf_size", 2),
+            ("notif_thrs", 2),
+            ("pio_id", 1),
+            ("reserved0", 1),
+        ])?;
+        let version = fixed[0];
+        let flags = fixed[1];
+        let buf_size = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let notif_thrs = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let pio_id = fixed[6];
+        let reserved0 = fixed[7];
         let trailing = r.rest();
         Ok(Self { version, flags, buf_size, notif_thrs, pio_id, reserved0, trailing })
     }
@@ -1905,9 +1987,10 @@ impl<'a> CfgCfgAllDevices<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let clear_mask = u32::from_le_bytes(r.array("clear_mask")?);
-        let save_mask = u32::from_le_bytes(r.array("save_mask")?);
-        let load_mask = u32::from_le_bytes(r.array("load_mask")?);
+        let fixed: &[u8; 12] = r.run(&[("clear_mask", 4), ("save_mask", 4), ("load_mask", 4)])?;
+        let clear_mask = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let save_mask = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let load_mask = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { clear_mask, save_mask, load_mask, trailing })
     }
@@ -2000,10 +2083,11 @@ impl<'a> CfgCfg<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let clear_mask = u32::from_le_bytes(r.array("clear_mask")?);
-        let save_mask = u32::from_le_bytes(r.array("save_mask")?);
-        let load_mask = u32::from_le_bytes(r.array("load_mask")?);
-        let device_mask = u8::from_le_bytes(r.array("device_mask")?);
+        let fixed: &[u8; 13] = r.run(&[("clear_mask", 4), ("save_mask", 4), ("load_mask", 4), ("device_mask", 1)])?;
+        let clear_mask = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let save_mask = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let load_mask = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let device_mask = fixed[12];
         let trailing = r.rest();
         Ok(Self { clear_mask, save_mask, load_mask, device_mask, trailing })
     }
@@ -2126,15 +2210,28 @@ impl<'a> CfgDatSet<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let maj_a = f64::from_le_bytes(r.array("maj_a")?);
-        let flat = f64::from_le_bytes(r.array("flat")?);
-        let d_x = f32::from_le_bytes(r.array("d_x")?);
-        let d_y = f32::from_le_bytes(r.array("d_y")?);
-        let d_z = f32::from_le_bytes(r.array("d_z")?);
-        let rot_x = f32::from_le_bytes(r.array("rot_x")?);
-        let rot_y = f32::from_le_bytes(r.array("rot_y")?);
-        let rot_z = f32::from_le_bytes(r.array("rot_z")?);
-        let scale = f32::from_le_bytes(r.array("scale")?);
+        let fixed: &[u8; 44] = r.run(&[
+            ("maj_a", 8),
+            ("flat", 8),
+            ("d_x", 4),
+            ("d_y", 4),
+            ("d_z", 4),
+            ("rot_x", 4),
+            ("rot_y", 4),
+            ("rot_z", 4),
+            ("scale", 4),
+        ])?;
+        let maj_a =
+            f64::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3], fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let flat =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let d_x = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let d_y = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let d_z = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let rot_x = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let rot_y = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let rot_z = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let scale = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
         let trailing = r.rest();
         Ok(Self { maj_a, flat, d_x, d_y, d_z, rot_x, rot_y, rot_z, scale, trailing })
     }
@@ -2221,17 +2318,33 @@ impl<'a> CfgDat<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let datum_num = u16::from_le_bytes(r.array("datum_num")?);
-        let datum_name = r.bytes(6, "datum_name")?;
-        let maj_a = f64::from_le_bytes(r.array("maj_a")?);
-        let flat = f64::from_le_bytes(r.array("flat")?);
-        let d_x = f32::from_le_bytes(r.array("d_x")?);
-        let d_y = f32::from_le_bytes(r.array("d_y")?);
-        let d_z = f32::from_le_bytes(r.array("d_z")?);
-        let rot_x = f32::from_le_bytes(r.array("rot_x")?);
-        let rot_y = f32::from_le_bytes(r.array("rot_y")?);
-        let rot_z = f32::from_le_bytes(r.array("rot_z")?);
-        let scale = f32::from_le_bytes(r.array("scale")?);
+        let fixed: &[u8; 52] = r.run(&[
+            ("datum_num", 2),
+            ("datum_name", 6),
+            ("maj_a", 8),
+            ("flat", 8),
+            ("d_x", 4),
+            ("d_y", 4),
+            ("d_z", 4),
+            ("rot_x", 4),
+            ("rot_y", 4),
+            ("rot_z", 4),
+            ("scale", 4),
+        ])?;
+        let datum_num = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let datum_name = &fixed[2..8];
+        let maj_a =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let flat = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let d_x = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let d_y = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let d_z = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let rot_x = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let rot_y = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let rot_z = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let scale = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
         let trailing = r.rest();
         Ok(Self { datum_num, datum_name, maj_a, flat, d_x, d_y, d_z, rot_x, rot_y, rot_z, scale, trailing })
     }
@@ -2457,17 +2570,30 @@ pub struct CfgDoscOscillator {
 impl<'a> ubx::Entry<'a> for CfgDoscOscillator {
     const WIDTH: usize = 32;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let freq_raw = u32::from_le_bytes(r.array("freq")?);
-        let phase_offset = i32::from_le_bytes(r.array("phase_offset")?);
-        let with_temp_raw = u32::from_le_bytes(r.array("with_temp")?);
-        let with_age_raw = u32::from_le_bytes(r.array("with_age")?);
-        let time_to_temp = u16::from_le_bytes(r.array("time_to_temp")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
-        let gain_vco_raw = i32::from_le_bytes(r.array("gain_vco")?);
-        let gain_uncertainty_raw = u8::from_le_bytes(r.array("gain_uncertainty")?);
+        let fixed: &[u8; 29] = r.run(&[
+            ("osc_id", 1),
+            ("reserved2", 1),
+            ("flags", 2),
+            ("freq", 4),
+            ("phase_offset", 4),
+            ("with_temp", 4),
+            ("with_age", 4),
+            ("time_to_temp", 2),
+            ("reserved3", 2),
+            ("gain_vco", 4),
+            ("gain_uncertainty", 1),
+        ])?;
+        let osc_id = fixed[0];
+        let reserved2 = fixed[1];
+        let flags = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let freq_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let phase_offset = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let with_temp_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let with_age_raw = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let time_to_temp = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let reserved3 = u16::from_le_bytes([fixed[22], fixed[23]]);
+        let gain_vco_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let gain_uncertainty_raw = fixed[28];
         let reserved4 = {
             let b: [u8; 3] = r.array("reserved4")?;
             let mut le = [0u8; 4];
@@ -2608,9 +2734,10 @@ impl<'a> CfgDosc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_osc = u8::from_le_bytes(r.array("num_osc")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("num_osc", 1), ("reserved1", 2)])?;
+        let version = fixed[0];
+        let num_osc = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let oscillators = r.group(Some(usize::from(num_osc)), 0, 2, 0, "oscillators")?;
         let trailing = r.rest();
         Ok(Self { version, num_osc, reserved1, oscillators, trailing })
@@ -2681,8 +2808,9 @@ impl<'a> CfgDynseed<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let seed_hi = u32::from_le_bytes(r.array("seed_hi")?);
-        let seed_lo = u32::from_le_bytes(r.array("seed_lo")?);
+        let fixed: &[u8; 8] = r.run(&[("seed_hi", 4), ("seed_lo", 4)])?;
+        let seed_hi = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let seed_lo = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, reserved1, seed_hi, seed_lo, trailing })
     }
@@ -2814,11 +2942,13 @@ impl<'a> CfgEsfa<'a> {
             le[..9].copy_from_slice(&b);
             u128::from_le_bytes(le)
         };
-        let accel_rms_thdl_raw = u8::from_le_bytes(r.array("accel_rms_thdl")?);
-        let frequency = u8::from_le_bytes(r.array("frequency")?);
-        let latency = u16::from_le_bytes(r.array("latency")?);
-        let accuracy_raw = u16::from_le_bytes(r.array("accuracy")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 10] =
+            r.run(&[("accel_rms_thdl", 1), ("frequency", 1), ("latency", 2), ("accuracy", 2), ("reserved2", 4)])?;
+        let accel_rms_thdl_raw = fixed[0];
+        let frequency = fixed[1];
+        let latency = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let accuracy_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let reserved2 = u32::from_le_bytes([fixed[6], fixed[7], fixed[8], fixed[9]]);
         let trailing = r.rest();
         Ok(Self { version, reserved1, accel_rms_thdl_raw, frequency, latency, accuracy_raw, reserved2, trailing })
     }
@@ -2966,10 +3096,11 @@ impl<'a> CfgEsfalg<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let bitfield = u32::from_le_bytes(r.array("bitfield")?);
-        let yaw_raw = u32::from_le_bytes(r.array("yaw")?);
-        let pitch_raw = i16::from_le_bytes(r.array("pitch")?);
-        let roll_raw = i16::from_le_bytes(r.array("roll")?);
+        let fixed: &[u8; 12] = r.run(&[("bitfield", 4), ("yaw", 4), ("pitch", 2), ("roll", 2)])?;
+        let bitfield = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let yaw_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let pitch_raw = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let roll_raw = i16::from_le_bytes([fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { bitfield, yaw_raw, pitch_raw, roll_raw, trailing })
     }
@@ -3108,12 +3239,20 @@ impl<'a> CfgEsfg<'a> {
             le[..7].copy_from_slice(&b);
             u64::from_le_bytes(le)
         };
-        let tc_table_save_rate = u16::from_le_bytes(r.array("tc_table_save_rate")?);
-        let gyro_rms_thdl_raw = u8::from_le_bytes(r.array("gyro_rms_thdl")?);
-        let frequency = u8::from_le_bytes(r.array("frequency")?);
-        let latency = u16::from_le_bytes(r.array("latency")?);
-        let accuracy_raw = u16::from_le_bytes(r.array("accuracy")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("tc_table_save_rate", 2),
+            ("gyro_rms_thdl", 1),
+            ("frequency", 1),
+            ("latency", 2),
+            ("accuracy", 2),
+            ("reserved2", 4),
+        ])?;
+        let tc_table_save_rate = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let gyro_rms_thdl_raw = fixed[2];
+        let frequency = fixed[3];
+        let latency = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let accuracy_raw = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let reserved2 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -3340,17 +3479,30 @@ impl<'a> CfgEsfwt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags1 = u8::from_le_bytes(r.array("flags1")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let wt_factor_raw = u32::from_le_bytes(r.array("wt_factor")?);
-        let wt_quant_error_raw = u32::from_le_bytes(r.array("wt_quant_error")?);
-        let wt_count_max = u32::from_le_bytes(r.array("wt_count_max")?);
-        let wt_latency = u16::from_le_bytes(r.array("wt_latency")?);
-        let wt_frequency = u8::from_le_bytes(r.array("wt_frequency")?);
-        let flags3 = u8::from_le_bytes(r.array("flags3")?);
-        let speed_dead_band = u16::from_le_bytes(r.array("speed_dead_band")?);
+        let fixed: &[u8; 22] = r.run(&[
+            ("version", 1),
+            ("flags1", 1),
+            ("flags2", 1),
+            ("reserved1", 1),
+            ("wt_factor", 4),
+            ("wt_quant_error", 4),
+            ("wt_count_max", 4),
+            ("wt_latency", 2),
+            ("wt_frequency", 1),
+            ("flags3", 1),
+            ("speed_dead_band", 2),
+        ])?;
+        let version = fixed[0];
+        let flags1 = fixed[1];
+        let flags2 = fixed[2];
+        let reserved1 = fixed[3];
+        let wt_factor_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let wt_quant_error_raw = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let wt_count_max = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let wt_latency = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let wt_frequency = fixed[18];
+        let flags3 = fixed[19];
+        let speed_dead_band = u16::from_le_bytes([fixed[20], fixed[21]]);
         let reserved2 = {
             let b: [u8; 10] = r.array("reserved2")?;
             let mut le = [0u8; 16];
@@ -3637,9 +3789,10 @@ impl<'a> CfgEsrc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_sources = u8::from_le_bytes(r.array("num_sources")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("num_sources", 1), ("reserved1", 2)])?;
+        let version = fixed[0];
+        let num_sources = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let sources = r.group(Some(usize::from(num_sources)), 0, 2, 0, "sources")?;
         let trailing = r.rest();
         Ok(Self { version, num_sources, reserved1, sources, trailing })
@@ -3736,11 +3889,13 @@ impl<'a> CfgFixseed<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let length = u8::from_le_bytes(r.array("length")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let seed_hi = u32::from_le_bytes(r.array("seed_hi")?);
-        let seed_lo = u32::from_le_bytes(r.array("seed_lo")?);
+        let fixed: &[u8; 12] =
+            r.run(&[("version", 1), ("length", 1), ("reserved1", 2), ("seed_hi", 4), ("seed_lo", 4)])?;
+        let version = fixed[0];
+        let length = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let seed_hi = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let seed_lo = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let messages = r.group(Some(usize::from(length)), 0, 65535, 0, "messages")?;
         let trailing = r.rest();
         Ok(Self { version, length, reserved1, seed_hi, seed_lo, messages, trailing })
@@ -3919,14 +4074,24 @@ impl<'a> CfgGeofence<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_fences = u8::from_le_bytes(r.array("num_fences")?);
-        let conf_lvl = u8::from_le_bytes(r.array("conf_lvl")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let pio_enabled = u8::from_le_bytes(r.array("pio_enabled")?);
-        let pin_polarity = u8::from_le_bytes(r.array("pin_polarity")?);
-        let pin = u8::from_le_bytes(r.array("pin")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 8] = r.run(&[
+            ("version", 1),
+            ("num_fences", 1),
+            ("conf_lvl", 1),
+            ("reserved0", 1),
+            ("pio_enabled", 1),
+            ("pin_polarity", 1),
+            ("pin", 1),
+            ("reserved1", 1),
+        ])?;
+        let version = fixed[0];
+        let num_fences = fixed[1];
+        let conf_lvl = fixed[2];
+        let reserved0 = fixed[3];
+        let pio_enabled = fixed[4];
+        let pin_polarity = fixed[5];
+        let pin = fixed[6];
+        let reserved1 = fixed[7];
         let fences = r.group(Some(usize::from(num_fences)), 0, 4, 0, "fences")?;
         let trailing = r.rest();
         Ok(Self {
@@ -4132,10 +4297,12 @@ impl<'a> CfgGnss<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let msg_ver = u8::from_le_bytes(r.array("msg_ver")?);
-        let num_trk_ch_hw = u8::from_le_bytes(r.array("num_trk_ch_hw")?);
-        let num_trk_ch_use = u8::from_le_bytes(r.array("num_trk_ch_use")?);
-        let num_config_blocks = u8::from_le_bytes(r.array("num_config_blocks")?);
+        let fixed: &[u8; 4] =
+            r.run(&[("msg_ver", 1), ("num_trk_ch_hw", 1), ("num_trk_ch_use", 1), ("num_config_blocks", 1)])?;
+        let msg_ver = fixed[0];
+        let num_trk_ch_hw = fixed[1];
+        let num_trk_ch_use = fixed[2];
+        let num_config_blocks = fixed[3];
         let blocks = r.group(Some(usize::from(num_config_blocks)), 0, 65535, 0, "blocks")?;
         let trailing = r.rest();
         Ok(Self { msg_ver, num_trk_ch_hw, num_trk_ch_use, num_config_blocks, blocks, trailing })
@@ -4354,12 +4521,20 @@ impl<'a> ubx::Entry<'a> for CfgInfBlock {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let inf_msg_mask_ddc = u8::from_le_bytes(r.array("inf_msg_mask_ddc")?);
-        let inf_msg_mask_uart1 = u8::from_le_bytes(r.array("inf_msg_mask_uart1")?);
-        let inf_msg_mask_uart2 = u8::from_le_bytes(r.array("inf_msg_mask_uart2")?);
-        let inf_msg_mask_usb = u8::from_le_bytes(r.array("inf_msg_mask_usb")?);
-        let inf_msg_mask_spi = u8::from_le_bytes(r.array("inf_msg_mask_spi")?);
-        let inf_msg_mask_reserved = u8::from_le_bytes(r.array("inf_msg_mask_reserved")?);
+        let fixed: &[u8; 6] = r.run(&[
+            ("inf_msg_mask_ddc", 1),
+            ("inf_msg_mask_uart1", 1),
+            ("inf_msg_mask_uart2", 1),
+            ("inf_msg_mask_usb", 1),
+            ("inf_msg_mask_spi", 1),
+            ("inf_msg_mask_reserved", 1),
+        ])?;
+        let inf_msg_mask_ddc = fixed[0];
+        let inf_msg_mask_uart1 = fixed[1];
+        let inf_msg_mask_uart2 = fixed[2];
+        let inf_msg_mask_usb = fixed[3];
+        let inf_msg_mask_spi = fixed[4];
+        let inf_msg_mask_reserved = fixed[5];
         Ok(Self {
             protocol_id,
             reserved1,
@@ -4628,8 +4803,9 @@ impl<'a> CfgItfm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let config = u32::from_le_bytes(r.array("config")?);
-        let config2 = u32::from_le_bytes(r.array("config2")?);
+        let fixed: &[u8; 8] = r.run(&[("config", 4), ("config2", 4)])?;
+        let config = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let config2 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { config, config2, trailing })
     }
@@ -4769,12 +4945,20 @@ impl<'a> CfgLogfilter<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let min_interval = u16::from_le_bytes(r.array("min_interval")?);
-        let time_threshold = u16::from_le_bytes(r.array("time_threshold")?);
-        let speed_threshold = u16::from_le_bytes(r.array("speed_threshold")?);
-        let position_threshold = u32::from_le_bytes(r.array("position_threshold")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("version", 1),
+            ("flags", 1),
+            ("min_interval", 2),
+            ("time_threshold", 2),
+            ("speed_threshold", 2),
+            ("position_threshold", 4),
+        ])?;
+        let version = fixed[0];
+        let flags = fixed[1];
+        let min_interval = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let time_threshold = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let speed_threshold = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let position_threshold = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { version, flags, min_interval, time_threshold, speed_threshold, position_threshold, trailing })
     }
@@ -4840,8 +5024,9 @@ impl<'a> CfgMsgPoll<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let msg_class = u8::from_le_bytes(r.array("msg_class")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let fixed: &[u8; 2] = r.run(&[("msg_class", 1), ("msg_id", 1)])?;
+        let msg_class = fixed[0];
+        let msg_id = fixed[1];
         let trailing = r.rest();
         Ok(Self { msg_class, msg_id, trailing })
     }
@@ -4898,9 +5083,10 @@ impl<'a> CfgMsgCurrentPort<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let msg_class = u8::from_le_bytes(r.array("msg_class")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
-        let rate = u8::from_le_bytes(r.array("rate")?);
+        let fixed: &[u8; 3] = r.run(&[("msg_class", 1), ("msg_id", 1), ("rate", 1)])?;
+        let msg_class = fixed[0];
+        let msg_id = fixed[1];
+        let rate = fixed[2];
         let trailing = r.rest();
         Ok(Self { msg_class, msg_id, rate, trailing })
     }
@@ -4983,8 +5169,9 @@ impl<'a> CfgMsg<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let msg_class = u8::from_le_bytes(r.array("msg_class")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let fixed: &[u8; 2] = r.run(&[("msg_class", 1), ("msg_id", 1)])?;
+        let msg_class = fixed[0];
+        let msg_id = fixed[1];
         let rates = r.group(Some(6), 0, 65535, 0, "rates")?;
         let trailing = r.rest();
         Ok(Self { msg_class, msg_id, rates, trailing })
@@ -5222,24 +5409,44 @@ impl<'a> CfgNav5<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let mask = u16::from_le_bytes(r.array("mask")?);
-        let dyn_model = u8::from_le_bytes(r.array("dyn_model")?);
-        let fix_mode = u8::from_le_bytes(r.array("fix_mode")?);
-        let fixed_alt_raw = i32::from_le_bytes(r.array("fixed_alt")?);
-        let fixed_alt_var_raw = u32::from_le_bytes(r.array("fixed_alt_var")?);
-        let min_elev = i8::from_le_bytes(r.array("min_elev")?);
-        let dr_limit = u8::from_le_bytes(r.array("dr_limit")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let t_dop_raw = u16::from_le_bytes(r.array("t_dop")?);
-        let p_acc = u16::from_le_bytes(r.array("p_acc")?);
-        let t_acc = u16::from_le_bytes(r.array("t_acc")?);
-        let static_hold_thresh = u8::from_le_bytes(r.array("static_hold_thresh")?);
-        let dgnss_timeout = u8::from_le_bytes(r.array("dgnss_timeout")?);
-        let cno_thresh_num_svs = u8::from_le_bytes(r.array("cno_thresh_num_svs")?);
-        let cno_thresh = u8::from_le_bytes(r.array("cno_thresh")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let static_hold_max_dist = u16::from_le_bytes(r.array("static_hold_max_dist")?);
-        let utc_standard = u8::from_le_bytes(r.array("utc_standard")?);
+        let fixed: &[u8; 31] = r.run(&[
+            ("mask", 2),
+            ("dyn_model", 1),
+            ("fix_mode", 1),
+            ("fixed_alt", 4),
+            ("fixed_alt_var", 4),
+            ("min_elev", 1),
+            ("dr_limit", 1),
+            ("p_dop", 2),
+            ("t_dop", 2),
+            ("p_acc", 2),
+            ("t_acc", 2),
+            ("static_hold_thresh", 1),
+            ("dgnss_timeout", 1),
+            ("cno_thresh_num_svs", 1),
+            ("cno_thresh", 1),
+            ("reserved1", 2),
+            ("static_hold_max_dist", 2),
+            ("utc_standard", 1),
+        ])?;
+        let mask = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let dyn_model = fixed[2];
+        let fix_mode = fixed[3];
+        let fixed_alt_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let fixed_alt_var_raw = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let min_elev = i8::from_le_bytes([fixed[12]]);
+        let dr_limit = fixed[13];
+        let p_dop_raw = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let t_dop_raw = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let p_acc = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let t_acc = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let static_hold_thresh = fixed[22];
+        let dgnss_timeout = fixed[23];
+        let cno_thresh_num_svs = fixed[24];
+        let cno_thresh = fixed[25];
+        let reserved1 = u16::from_le_bytes([fixed[26], fixed[27]]);
+        let static_hold_max_dist = u16::from_le_bytes([fixed[28], fixed[29]]);
+        let utc_standard = fixed[30];
         let reserved2 = {
             let b: [u8; 5] = r.array("reserved2")?;
             let mut le = [0u8; 8];
@@ -5537,27 +5744,50 @@ impl<'a> CfgNavx5<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u16::from_le_bytes(r.array("version")?);
-        let mask1 = u16::from_le_bytes(r.array("mask1")?);
-        let mask2 = u32::from_le_bytes(r.array("mask2")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let min_svs = u8::from_le_bytes(r.array("min_svs")?);
-        let max_svs = u8::from_le_bytes(r.array("max_svs")?);
-        let min_cno = u8::from_le_bytes(r.array("min_cno")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let ini_fix3d = u8::from_le_bytes(r.array("ini_fix3d")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
-        let ack_aiding = u8::from_le_bytes(r.array("ack_aiding")?);
-        let wkn_rollover = u16::from_le_bytes(r.array("wkn_rollover")?);
-        let sig_atten_comp_mode = u8::from_le_bytes(r.array("sig_atten_comp_mode")?);
-        let reserved3 = u8::from_le_bytes(r.array("reserved3")?);
-        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
-        let reserved5 = u16::from_le_bytes(r.array("reserved5")?);
-        let use_ppp = u8::from_le_bytes(r.array("use_ppp")?);
-        let aop_cfg = u8::from_le_bytes(r.array("aop_cfg")?);
-        let reserved6 = u16::from_le_bytes(r.array("reserved6")?);
-        let aop_orb_max_err = u16::from_le_bytes(r.array("aop_orb_max_err")?);
-        let reserved7 = u32::from_le_bytes(r.array("reserved7")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("version", 2),
+            ("mask1", 2),
+            ("mask2", 4),
+            ("reserved0", 2),
+            ("min_svs", 1),
+            ("max_svs", 1),
+            ("min_cno", 1),
+            ("reserved1", 1),
+            ("ini_fix3d", 1),
+            ("reserved2", 2),
+            ("ack_aiding", 1),
+            ("wkn_rollover", 2),
+            ("sig_atten_comp_mode", 1),
+            ("reserved3", 1),
+            ("reserved4", 2),
+            ("reserved5", 2),
+            ("use_ppp", 1),
+            ("aop_cfg", 1),
+            ("reserved6", 2),
+            ("aop_orb_max_err", 2),
+            ("reserved7", 4),
+        ])?;
+        let version = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let mask1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let mask2 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let reserved0 = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let min_svs = fixed[10];
+        let max_svs = fixed[11];
+        let min_cno = fixed[12];
+        let reserved1 = fixed[13];
+        let ini_fix3d = fixed[14];
+        let reserved2 = u16::from_le_bytes([fixed[15], fixed[16]]);
+        let ack_aiding = fixed[17];
+        let wkn_rollover = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let sig_atten_comp_mode = fixed[20];
+        let reserved3 = fixed[21];
+        let reserved4 = u16::from_le_bytes([fixed[22], fixed[23]]);
+        let reserved5 = u16::from_le_bytes([fixed[24], fixed[25]]);
+        let use_ppp = fixed[26];
+        let aop_cfg = fixed[27];
+        let reserved6 = u16::from_le_bytes([fixed[28], fixed[29]]);
+        let aop_orb_max_err = u16::from_le_bytes([fixed[30], fixed[31]]);
+        let reserved7 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let reserved8 = {
             let b: [u8; 3] = r.array("reserved8")?;
             let mut le = [0u8; 4];
@@ -5893,16 +6123,28 @@ impl<'a> CfgNmea<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let filter = u8::from_le_bytes(r.array("filter")?);
-        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let gnss_to_filter = u32::from_le_bytes(r.array("gnss_to_filter")?);
-        let sv_numbering = u8::from_le_bytes(r.array("sv_numbering")?);
-        let main_talker_id = u8::from_le_bytes(r.array("main_talker_id")?);
-        let gsv_talker_id = u8::from_le_bytes(r.array("gsv_talker_id")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let bds_talker_id = r.bytes(2, "bds_talker_id")?;
+        let fixed: &[u8; 14] = r.run(&[
+            ("filter", 1),
+            ("nmea_version", 1),
+            ("num_sv", 1),
+            ("flags", 1),
+            ("gnss_to_filter", 4),
+            ("sv_numbering", 1),
+            ("main_talker_id", 1),
+            ("gsv_talker_id", 1),
+            ("version", 1),
+            ("bds_talker_id", 2),
+        ])?;
+        let filter = fixed[0];
+        let nmea_version = fixed[1];
+        let num_sv = fixed[2];
+        let flags = fixed[3];
+        let gnss_to_filter = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let sv_numbering = fixed[8];
+        let main_talker_id = fixed[9];
+        let gsv_talker_id = fixed[10];
+        let version = fixed[11];
+        let bds_talker_id = &fixed[12..14];
         let reserved1 = {
             let b: [u8; 6] = r.array("reserved1")?;
             let mut le = [0u8; 8];
@@ -6157,15 +6399,26 @@ impl<'a> CfgNmeaV0<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let filter = u8::from_le_bytes(r.array("filter")?);
-        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let gnss_to_filter = u32::from_le_bytes(r.array("gnss_to_filter")?);
-        let sv_numbering = u8::from_le_bytes(r.array("sv_numbering")?);
-        let main_talker_id = u8::from_le_bytes(r.array("main_talker_id")?);
-        let gsv_talker_id = u8::from_le_bytes(r.array("gsv_talker_id")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("filter", 1),
+            ("nmea_version", 1),
+            ("num_sv", 1),
+            ("flags", 1),
+            ("gnss_to_filter", 4),
+            ("sv_numbering", 1),
+            ("main_talker_id", 1),
+            ("gsv_talker_id", 1),
+            ("version", 1),
+        ])?;
+        let filter = fixed[0];
+        let nmea_version = fixed[1];
+        let num_sv = fixed[2];
+        let flags = fixed[3];
+        let gnss_to_filter = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let sv_numbering = fixed[8];
+        let main_talker_id = fixed[9];
+        let gsv_talker_id = fixed[10];
+        let version = fixed[11];
         let trailing = r.rest();
         Ok(Self {
             filter,
@@ -6345,10 +6598,11 @@ impl<'a> CfgNmeaDeprecated<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let filter = u8::from_le_bytes(r.array("filter")?);
-        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 4] = r.run(&[("filter", 1), ("nmea_version", 1), ("num_sv", 1), ("flags", 1)])?;
+        let filter = fixed[0];
+        let nmea_version = fixed[1];
+        let num_sv = fixed[2];
+        let flags = fixed[3];
         let trailing = r.rest();
         Ok(Self { filter, nmea_version, num_sv, flags, trailing })
     }
@@ -6533,20 +6787,29 @@ impl<'a> CfgOdo<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let odo_cfg = u8::from_le_bytes(r.array("odo_cfg")?);
+        let fixed: &[u8; 2] = r.run(&[("flags", 1), ("odo_cfg", 1)])?;
+        let flags = fixed[0];
+        let odo_cfg = fixed[1];
         let reserved1 = {
             let b: [u8; 6] = r.array("reserved1")?;
             let mut le = [0u8; 8];
             le[..6].copy_from_slice(&b);
             u64::from_le_bytes(le)
         };
-        let cog_max_speed_raw = u8::from_le_bytes(r.array("cog_max_speed")?);
-        let cog_max_pos_acc = u8::from_le_bytes(r.array("cog_max_pos_acc")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
-        let vel_lp_gain = u8::from_le_bytes(r.array("vel_lp_gain")?);
-        let cog_lp_gain = u8::from_le_bytes(r.array("cog_lp_gain")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 8] = r.run(&[
+            ("cog_max_speed", 1),
+            ("cog_max_pos_acc", 1),
+            ("reserved2", 2),
+            ("vel_lp_gain", 1),
+            ("cog_lp_gain", 1),
+            ("reserved3", 2),
+        ])?;
+        let cog_max_speed_raw = fixed[0];
+        let cog_max_pos_acc = fixed[1];
+        let reserved2 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let vel_lp_gain = fixed[4];
+        let cog_lp_gain = fixed[5];
+        let reserved3 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -6799,19 +7062,37 @@ impl<'a> CfgPm2<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let max_startup_state_dur = u8::from_le_bytes(r.array("max_startup_state_dur")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
-        let update_period = u32::from_le_bytes(r.array("update_period")?);
-        let search_period = u32::from_le_bytes(r.array("search_period")?);
-        let grid_offset = u32::from_le_bytes(r.array("grid_offset")?);
-        let on_time = u16::from_le_bytes(r.array("on_time")?);
-        let min_acq_time = u16::from_le_bytes(r.array("min_acq_time")?);
-        let reserved3 = u128::from_le_bytes(r.array("reserved3")?);
-        let reserved4 = u32::from_le_bytes(r.array("reserved4")?);
-        let extint_inactivity_ms = u32::from_le_bytes(r.array("extint_inactivity_ms")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("version", 1),
+            ("reserved1", 1),
+            ("max_startup_state_dur", 1),
+            ("reserved2", 1),
+            ("flags", 4),
+            ("update_period", 4),
+            ("search_period", 4),
+            ("grid_offset", 4),
+            ("on_time", 2),
+            ("min_acq_time", 2),
+            ("reserved3", 16),
+            ("reserved4", 4),
+            ("extint_inactivity_ms", 4),
+        ])?;
+        let version = fixed[0];
+        let reserved1 = fixed[1];
+        let max_startup_state_dur = fixed[2];
+        let reserved2 = fixed[3];
+        let flags = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let update_period = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let search_period = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let grid_offset = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let on_time = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let min_acq_time = u16::from_le_bytes([fixed[22], fixed[23]]);
+        let reserved3 = u128::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31], fixed[32],
+            fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39],
+        ]);
+        let reserved4 = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let extint_inactivity_ms = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -7027,18 +7308,35 @@ impl<'a> CfgPm2V1<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let max_startup_state_dur = u8::from_le_bytes(r.array("max_startup_state_dur")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
-        let update_period = u32::from_le_bytes(r.array("update_period")?);
-        let search_period = u32::from_le_bytes(r.array("search_period")?);
-        let grid_offset = u32::from_le_bytes(r.array("grid_offset")?);
-        let on_time = u16::from_le_bytes(r.array("on_time")?);
-        let min_acq_time = u16::from_le_bytes(r.array("min_acq_time")?);
-        let reserved3 = u128::from_le_bytes(r.array("reserved3")?);
-        let reserved4 = u32::from_le_bytes(r.array("reserved4")?);
+        let fixed: &[u8; 44] = r.run(&[
+            ("version", 1),
+            ("reserved1", 1),
+            ("max_startup_state_dur", 1),
+            ("reserved2", 1),
+            ("flags", 4),
+            ("update_period", 4),
+            ("search_period", 4),
+            ("grid_offset", 4),
+            ("on_time", 2),
+            ("min_acq_time", 2),
+            ("reserved3", 16),
+            ("reserved4", 4),
+        ])?;
+        let version = fixed[0];
+        let reserved1 = fixed[1];
+        let max_startup_state_dur = fixed[2];
+        let reserved2 = fixed[3];
+        let flags = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let update_period = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let search_period = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let grid_offset = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let on_time = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let min_acq_time = u16::from_le_bytes([fixed[22], fixed[23]]);
+        let reserved3 = u128::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31], fixed[32],
+            fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39],
+        ]);
+        let reserved4 = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -7190,11 +7488,13 @@ impl<'a> CfgPms<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let power_setup_value = u8::from_le_bytes(r.array("power_setup_value")?);
-        let period = u16::from_le_bytes(r.array("period")?);
-        let on_time = u16::from_le_bytes(r.array("on_time")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("version", 1), ("power_setup_value", 1), ("period", 2), ("on_time", 2), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let power_setup_value = fixed[1];
+        let period = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let on_time = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, power_setup_value, period, on_time, reserved0, trailing })
     }
@@ -7486,15 +7786,26 @@ impl<'a> CfgPrt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let port_id = u8::from_le_bytes(r.array("port_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let tx_ready = u16::from_le_bytes(r.array("tx_ready")?);
-        let mode = u32::from_le_bytes(r.array("mode")?);
-        let baud_rate = u32::from_le_bytes(r.array("baud_rate")?);
-        let in_proto_mask = u16::from_le_bytes(r.array("in_proto_mask")?);
-        let out_proto_mask = u16::from_le_bytes(r.array("out_proto_mask")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("port_id", 1),
+            ("reserved0", 1),
+            ("tx_ready", 2),
+            ("mode", 4),
+            ("baud_rate", 4),
+            ("in_proto_mask", 2),
+            ("out_proto_mask", 2),
+            ("flags", 2),
+            ("reserved1", 2),
+        ])?;
+        let port_id = fixed[0];
+        let reserved0 = fixed[1];
+        let tx_ready = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let mode = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let baud_rate = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let in_proto_mask = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let out_proto_mask = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let flags = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             port_id,
@@ -7703,9 +8014,10 @@ impl<'a> CfgRate<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let meas_rate = u16::from_le_bytes(r.array("meas_rate")?);
-        let nav_rate = u16::from_le_bytes(r.array("nav_rate")?);
-        let time_ref = u16::from_le_bytes(r.array("time_ref")?);
+        let fixed: &[u8; 6] = r.run(&[("meas_rate", 2), ("nav_rate", 2), ("time_ref", 2)])?;
+        let meas_rate = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let nav_rate = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let time_ref = u16::from_le_bytes([fixed[4], fixed[5]]);
         let trailing = r.rest();
         Ok(Self { meas_rate, nav_rate, time_ref, trailing })
     }
@@ -7988,9 +8300,10 @@ impl<'a> CfgRst<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let nav_bbr_mask = u16::from_le_bytes(r.array("nav_bbr_mask")?);
-        let reset_mode = u8::from_le_bytes(r.array("reset_mode")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("nav_bbr_mask", 2), ("reset_mode", 1), ("reserved1", 1)])?;
+        let nav_bbr_mask = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let reset_mode = fixed[2];
+        let reserved1 = fixed[3];
         let trailing = r.rest();
         Ok(Self { nav_bbr_mask, reset_mode, reserved1, trailing })
     }
@@ -8103,8 +8416,9 @@ impl<'a> CfgRxm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let lp_mode = u8::from_le_bytes(r.array("lp_mode")?);
+        let fixed: &[u8; 2] = r.run(&[("reserved1", 1), ("lp_mode", 1)])?;
+        let reserved1 = fixed[0];
+        let lp_mode = fixed[1];
         let trailing = r.rest();
         Ok(Self { reserved1, lp_mode, trailing })
     }
@@ -8251,11 +8565,13 @@ impl<'a> CfgSbas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let usage = u8::from_le_bytes(r.array("usage")?);
-        let max_sbas = u8::from_le_bytes(r.array("max_sbas")?);
-        let scanmode2 = u8::from_le_bytes(r.array("scanmode2")?);
-        let scanmode1 = u32::from_le_bytes(r.array("scanmode1")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("mode", 1), ("usage", 1), ("max_sbas", 1), ("scanmode2", 1), ("scanmode1", 4)])?;
+        let mode = fixed[0];
+        let usage = fixed[1];
+        let max_sbas = fixed[2];
+        let scanmode2 = fixed[3];
+        let scanmode1 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { mode, usage, max_sbas, scanmode2, scanmode1, trailing })
     }
@@ -8395,10 +8711,11 @@ impl<'a> CfgSenif<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let pio_conf = u16::from_le_bytes(r.array("pio_conf")?);
+        let fixed: &[u8; 6] = r.run(&[("type", 1), ("version", 1), ("flags", 2), ("pio_conf", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let flags = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let pio_conf = u16::from_le_bytes([fixed[4], fixed[5]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, flags, pio_conf, trailing })
     }
@@ -8800,16 +9117,28 @@ impl<'a> CfgSmgr<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let min_gnss_fix = u8::from_le_bytes(r.array("min_gnss_fix")?);
-        let max_freq_change = u16::from_le_bytes(r.array("max_freq_change")?);
-        let max_phase_corr_rate = u16::from_le_bytes(r.array("max_phase_corr_rate")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let freq_tolerance = u16::from_le_bytes(r.array("freq_tolerance")?);
-        let time_tolerance = u16::from_le_bytes(r.array("time_tolerance")?);
-        let message_cfg = u16::from_le_bytes(r.array("message_cfg")?);
-        let max_slew_rate = u16::from_le_bytes(r.array("max_slew_rate")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("version", 1),
+            ("min_gnss_fix", 1),
+            ("max_freq_change", 2),
+            ("max_phase_corr_rate", 2),
+            ("reserved1", 2),
+            ("freq_tolerance", 2),
+            ("time_tolerance", 2),
+            ("message_cfg", 2),
+            ("max_slew_rate", 2),
+            ("flags", 4),
+        ])?;
+        let version = fixed[0];
+        let min_gnss_fix = fixed[1];
+        let max_freq_change = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let max_phase_corr_rate = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let reserved1 = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let freq_tolerance = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let time_tolerance = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let message_cfg = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let max_slew_rate = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let flags = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -8960,10 +9289,12 @@ impl<'a> CfgSpt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let sensor_id = u16::from_le_bytes(r.array("sensor_id")?);
-        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 12] = r.run(&[("version", 1), ("reserved0", 1), ("sensor_id", 2), ("reserved1", 8)])?;
+        let version = fixed[0];
+        let reserved0 = fixed[1];
+        let sensor_id = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let reserved1 =
+            u64::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { version, reserved0, sensor_id, reserved1, trailing })
     }
@@ -9098,15 +9429,26 @@ impl<'a> CfgTmode2<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let time_mode = u8::from_le_bytes(r.array("time_mode")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let ecef_x_or_lat = i32::from_le_bytes(r.array("ecef_x_or_lat")?);
-        let ecef_y_or_lon = i32::from_le_bytes(r.array("ecef_y_or_lon")?);
-        let ecef_z_or_alt = i32::from_le_bytes(r.array("ecef_z_or_alt")?);
-        let fixed_pos_acc = u32::from_le_bytes(r.array("fixed_pos_acc")?);
-        let svin_min_dur = u32::from_le_bytes(r.array("svin_min_dur")?);
-        let svin_acc_limit = u32::from_le_bytes(r.array("svin_acc_limit")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("time_mode", 1),
+            ("reserved1", 1),
+            ("flags", 2),
+            ("ecef_x_or_lat", 4),
+            ("ecef_y_or_lon", 4),
+            ("ecef_z_or_alt", 4),
+            ("fixed_pos_acc", 4),
+            ("svin_min_dur", 4),
+            ("svin_acc_limit", 4),
+        ])?;
+        let time_mode = fixed[0];
+        let reserved1 = fixed[1];
+        let flags = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let ecef_x_or_lat = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y_or_lon = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z_or_alt = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let fixed_pos_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let svin_min_dur = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let svin_acc_limit = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self {
             time_mode,
@@ -9284,20 +9626,38 @@ impl<'a> CfgTmode3<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let ecef_x_or_lat = i32::from_le_bytes(r.array("ecef_x_or_lat")?);
-        let ecef_y_or_lon = i32::from_le_bytes(r.array("ecef_y_or_lon")?);
-        let ecef_z_or_alt = i32::from_le_bytes(r.array("ecef_z_or_alt")?);
-        let ecef_x_or_lat_hp = i8::from_le_bytes(r.array("ecef_x_or_lat_hp")?);
-        let ecef_y_or_lon_hp = i8::from_le_bytes(r.array("ecef_y_or_lon_hp")?);
-        let ecef_z_or_alt_hp = i8::from_le_bytes(r.array("ecef_z_or_alt_hp")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let fixed_pos_acc_raw = u32::from_le_bytes(r.array("fixed_pos_acc")?);
-        let svin_min_dur = u32::from_le_bytes(r.array("svin_min_dur")?);
-        let svin_acc_limit_raw = u32::from_le_bytes(r.array("svin_acc_limit")?);
-        let reserved3 = u64::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 40] = r.run(&[
+            ("version", 1),
+            ("reserved1", 1),
+            ("flags", 2),
+            ("ecef_x_or_lat", 4),
+            ("ecef_y_or_lon", 4),
+            ("ecef_z_or_alt", 4),
+            ("ecef_x_or_lat_hp", 1),
+            ("ecef_y_or_lon_hp", 1),
+            ("ecef_z_or_alt_hp", 1),
+            ("reserved2", 1),
+            ("fixed_pos_acc", 4),
+            ("svin_min_dur", 4),
+            ("svin_acc_limit", 4),
+            ("reserved3", 8),
+        ])?;
+        let version = fixed[0];
+        let reserved1 = fixed[1];
+        let flags = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let ecef_x_or_lat = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y_or_lon = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z_or_alt = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ecef_x_or_lat_hp = i8::from_le_bytes([fixed[16]]);
+        let ecef_y_or_lon_hp = i8::from_le_bytes([fixed[17]]);
+        let ecef_z_or_alt_hp = i8::from_le_bytes([fixed[18]]);
+        let reserved2 = fixed[19];
+        let fixed_pos_acc_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let svin_min_dur = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let svin_acc_limit_raw = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let reserved3 = u64::from_le_bytes([
+            fixed[32], fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39],
+        ]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -9583,17 +9943,30 @@ impl<'a> CfgTp5<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let tp_idx = u8::from_le_bytes(r.array("tp_idx")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let ant_cable_delay = i16::from_le_bytes(r.array("ant_cable_delay")?);
-        let rf_group_delay = i16::from_le_bytes(r.array("rf_group_delay")?);
-        let freq_period = u32::from_le_bytes(r.array("freq_period")?);
-        let freq_period_lock = u32::from_le_bytes(r.array("freq_period_lock")?);
-        let pulse_len_ratio = u32::from_le_bytes(r.array("pulse_len_ratio")?);
-        let pulse_len_ratio_lock = u32::from_le_bytes(r.array("pulse_len_ratio_lock")?);
-        let user_config_delay = i32::from_le_bytes(r.array("user_config_delay")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 32] = r.run(&[
+            ("tp_idx", 1),
+            ("version", 1),
+            ("reserved1", 2),
+            ("ant_cable_delay", 2),
+            ("rf_group_delay", 2),
+            ("freq_period", 4),
+            ("freq_period_lock", 4),
+            ("pulse_len_ratio", 4),
+            ("pulse_len_ratio_lock", 4),
+            ("user_config_delay", 4),
+            ("flags", 4),
+        ])?;
+        let tp_idx = fixed[0];
+        let version = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let ant_cable_delay = i16::from_le_bytes([fixed[4], fixed[5]]);
+        let rf_group_delay = i16::from_le_bytes([fixed[6], fixed[7]]);
+        let freq_period = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let freq_period_lock = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pulse_len_ratio = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let pulse_len_ratio_lock = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let user_config_delay = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let flags = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
         let trailing = r.rest();
         Ok(Self {
             tp_idx,
@@ -9804,10 +10177,11 @@ impl<'a> CfgTxslot<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let enable = u8::from_le_bytes(r.array("enable")?);
-        let ref_tp = u8::from_le_bytes(r.array("ref_tp")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("enable", 1), ("ref_tp", 1), ("reserved1", 1)])?;
+        let version = fixed[0];
+        let enable = fixed[1];
+        let ref_tp = fixed[2];
+        let reserved1 = fixed[3];
         let end = r.group(Some(3), 0, 65535, 0, "end")?;
         let trailing = r.rest();
         Ok(Self { version, enable, ref_tp, reserved1, end, trailing })
@@ -9950,15 +10324,26 @@ impl<'a> CfgUsb<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let vendor_id = u16::from_le_bytes(r.array("vendor_id")?);
-        let product_id = u16::from_le_bytes(r.array("product_id")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let power_consumption = u16::from_le_bytes(r.array("power_consumption")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let vendor_string = r.bytes(32, "vendor_string")?;
-        let product_string = r.bytes(32, "product_string")?;
-        let serial_number = r.bytes(32, "serial_number")?;
+        let fixed: &[u8; 108] = r.run(&[
+            ("vendor_id", 2),
+            ("product_id", 2),
+            ("reserved0", 2),
+            ("reserved1", 2),
+            ("power_consumption", 2),
+            ("flags", 2),
+            ("vendor_string", 32),
+            ("product_string", 32),
+            ("serial_number", 32),
+        ])?;
+        let vendor_id = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let product_id = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let reserved0 = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let reserved1 = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let power_consumption = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let flags = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let vendor_string = &fixed[12..44];
+        let product_string = &fixed[44..76];
+        let serial_number = &fixed[76..108];
         let trailing = r.rest();
         Ok(Self {
             vendor_id,
@@ -10089,9 +10474,10 @@ impl<'a> CfgValdelV0<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layers = u8::from_le_bytes(r.array("layers")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layers", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let layers = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let keys = r.group(None, 1, 64, 0, "keys")?;
         let trailing = r.rest();
         Ok(Self { version, layers, reserved0, keys, trailing })
@@ -10212,10 +10598,11 @@ impl<'a> CfgValdel<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layers = u8::from_le_bytes(r.array("layers")?);
-        let transaction = u8::from_le_bytes(r.array("transaction")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layers", 1), ("transaction", 1), ("reserved0", 1)])?;
+        let version = fixed[0];
+        let layers = fixed[1];
+        let transaction = fixed[2];
+        let reserved0 = fixed[3];
         let keys = r.group(None, 1, 64, 0, "keys")?;
         let trailing = r.rest();
         Ok(Self { version, layers, transaction, reserved0, keys, trailing })
@@ -10313,9 +10700,10 @@ impl<'a> CfgValgetPoll<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layer = u8::from_le_bytes(r.array("layer")?);
-        let position = u16::from_le_bytes(r.array("position")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layer", 1), ("position", 2)])?;
+        let version = fixed[0];
+        let layer = fixed[1];
+        let position = u16::from_le_bytes([fixed[2], fixed[3]]);
         let keys = r.group(None, 1, 64, 0, "keys")?;
         let trailing = r.rest();
         Ok(Self { version, layer, position, keys, trailing })
@@ -10384,9 +10772,10 @@ impl<'a> CfgValget<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layer = u8::from_le_bytes(r.array("layer")?);
-        let position = u16::from_le_bytes(r.array("position")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layer", 1), ("position", 2)])?;
+        let version = fixed[0];
+        let layer = fixed[1];
+        let position = u16::from_le_bytes([fixed[2], fixed[3]]);
         let cfg_data = r.left(0);
         let trailing = r.rest();
         Ok(Self { version, layer, position, cfg_data, trailing })
@@ -10479,9 +10868,10 @@ impl<'a> CfgValsetV0<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layers = u8::from_le_bytes(r.array("layers")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layers", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let layers = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let cfg_data = r.left(0);
         let trailing = r.rest();
         Ok(Self { version, layers, reserved0, cfg_data, trailing })
@@ -10587,10 +10977,11 @@ impl<'a> CfgValset<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let layers = u8::from_le_bytes(r.array("layers")?);
-        let transaction = u8::from_le_bytes(r.array("transaction")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("layers", 1), ("transaction", 1), ("reserved0", 1)])?;
+        let version = fixed[0];
+        let layers = fixed[1];
+        let transaction = fixed[2];
+        let reserved0 = fixed[3];
         let cfg_data = r.left(0);
         let trailing = r.rest();
         Ok(Self { version, layers, transaction, reserved0, cfg_data, trailing })
@@ -10769,14 +11160,24 @@ impl<'a> EsfAlg<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let error = u8::from_le_bytes(r.array("error")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let yaw_raw = u32::from_le_bytes(r.array("yaw")?);
-        let pitch_raw = i16::from_le_bytes(r.array("pitch")?);
-        let roll_raw = i16::from_le_bytes(r.array("roll")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("version", 1),
+            ("flags", 1),
+            ("error", 1),
+            ("reserved0", 1),
+            ("yaw", 4),
+            ("pitch", 2),
+            ("roll", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let flags = fixed[5];
+        let error = fixed[6];
+        let reserved0 = fixed[7];
+        let yaw_raw = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let pitch_raw = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let roll_raw = i16::from_le_bytes([fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, version, flags, error, reserved0, yaw_raw, pitch_raw, roll_raw, trailing })
     }
@@ -10997,15 +11398,26 @@ impl<'a> EsfIns<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let bitfield0 = u32::from_le_bytes(r.array("bitfield0")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let x_ang_rate_raw = i32::from_le_bytes(r.array("x_ang_rate")?);
-        let y_ang_rate_raw = i32::from_le_bytes(r.array("y_ang_rate")?);
-        let z_ang_rate_raw = i32::from_le_bytes(r.array("z_ang_rate")?);
-        let x_accel_raw = i32::from_le_bytes(r.array("x_accel")?);
-        let y_accel_raw = i32::from_le_bytes(r.array("y_accel")?);
-        let z_accel_raw = i32::from_le_bytes(r.array("z_accel")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("bitfield0", 4),
+            ("reserved0", 4),
+            ("itow", 4),
+            ("x_ang_rate", 4),
+            ("y_ang_rate", 4),
+            ("z_ang_rate", 4),
+            ("x_accel", 4),
+            ("y_accel", 4),
+            ("z_accel", 4),
+        ])?;
+        let bitfield0 = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let reserved0 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let itow = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let x_ang_rate_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let y_ang_rate_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let z_ang_rate_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let x_accel_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let y_accel_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let z_accel_raw = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             bitfield0,
@@ -11182,9 +11594,10 @@ impl<'a> EsfMeas<'a> {
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
         let present = true;
-        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let id = u16::from_le_bytes(r.array("id")?);
+        let fixed: &[u8; 8] = r.run(&[("time_tag", 4), ("flags", 2), ("id", 2)])?;
+        let time_tag = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let flags = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let id = u16::from_le_bytes([fixed[6], fixed[7]]);
         let measurements = r.group(Some(usize::from(((flags >> 11) & 0x1f) as u8)), 0, 65535, 0, "measurements")?;
         let calib_ttag =
             if present && r.remaining() >= 4 { Some(u32::from_le_bytes(r.array("calib_ttag")?)) } else { None };
@@ -11580,19 +11993,21 @@ impl<'a> EsfStatus<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let init_status1 = u8::from_le_bytes(r.array("init_status1")?);
-        let init_status2 = u8::from_le_bytes(r.array("init_status2")?);
+        let fixed: &[u8; 7] = r.run(&[("itow", 4), ("version", 1), ("init_status1", 1), ("init_status2", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let init_status1 = fixed[5];
+        let init_status2 = fixed[6];
         let reserved0 = {
             let b: [u8; 5] = r.array("reserved0")?;
             let mut le = [0u8; 8];
             le[..5].copy_from_slice(&b);
             u64::from_le_bytes(le)
         };
-        let fusion_mode = u8::from_le_bytes(r.array("fusion_mode")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let num_sens = u8::from_le_bytes(r.array("num_sens")?);
+        let fixed: &[u8; 4] = r.run(&[("fusion_mode", 1), ("reserved1", 2), ("num_sens", 1)])?;
+        let fusion_mode = fixed[0];
+        let reserved1 = u16::from_le_bytes([fixed[1], fixed[2]]);
+        let num_sens = fixed[3];
         let sensors = r.group(Some(usize::from(num_sens)), 0, 65535, 0, "sensors")?;
         let trailing = r.rest();
         Ok(Self {
@@ -11767,20 +12182,23 @@ impl<'a> HnrAtt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let roll_raw = i32::from_le_bytes(r.array("roll")?);
-        let pitch_raw = i32::from_le_bytes(r.array("pitch")?);
-        let heading_raw = i32::from_le_bytes(r.array("heading")?);
-        let acc_roll_raw = u32::from_le_bytes(r.array("acc_roll")?);
-        let acc_pitch_raw = u32::from_le_bytes(r.array("acc_pitch")?);
-        let acc_heading_raw = u32::from_le_bytes(r.array("acc_heading")?);
+        let fixed: &[u8; 24] =
+            r.run(&[("roll", 4), ("pitch", 4), ("heading", 4), ("acc_roll", 4), ("acc_pitch", 4), ("acc_heading", 4)])?;
+        let roll_raw = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pitch_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let heading_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let acc_roll_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let acc_pitch_raw = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let acc_heading_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -12012,15 +12430,26 @@ impl<'a> HnrIns<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let bitfield0 = u32::from_le_bytes(r.array("bitfield0")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let x_ang_rate_raw = i32::from_le_bytes(r.array("x_ang_rate")?);
-        let y_ang_rate_raw = i32::from_le_bytes(r.array("y_ang_rate")?);
-        let z_ang_rate_raw = i32::from_le_bytes(r.array("z_ang_rate")?);
-        let x_accel_raw = i32::from_le_bytes(r.array("x_accel")?);
-        let y_accel_raw = i32::from_le_bytes(r.array("y_accel")?);
-        let z_accel_raw = i32::from_le_bytes(r.array("z_accel")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("bitfield0", 4),
+            ("reserved1", 4),
+            ("itow", 4),
+            ("x_ang_rate", 4),
+            ("y_ang_rate", 4),
+            ("z_ang_rate", 4),
+            ("x_accel", 4),
+            ("y_accel", 4),
+            ("z_accel", 4),
+        ])?;
+        let bitfield0 = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let reserved1 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let itow = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let x_ang_rate_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let y_ang_rate_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let z_ang_rate_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let x_accel_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let y_accel_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let z_accel_raw = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             bitfield0,
@@ -12298,31 +12727,58 @@ impl<'a> HnrPvt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let gps_fix_raw = u8::from_le_bytes(r.array("gps_fix")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
-        let speed = i32::from_le_bytes(r.array("speed")?);
-        let head_mot_raw = i32::from_le_bytes(r.array("head_mot")?);
-        let head_veh_raw = i32::from_le_bytes(r.array("head_veh")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let head_acc_raw = u32::from_le_bytes(r.array("head_acc")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 72] = r.run(&[
+            ("itow", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+            ("nano", 4),
+            ("gps_fix", 1),
+            ("flags", 1),
+            ("reserved1", 2),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("g_speed", 4),
+            ("speed", 4),
+            ("head_mot", 4),
+            ("head_veh", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("s_acc", 4),
+            ("head_acc", 4),
+            ("reserved2", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let year = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let month = fixed[6];
+        let day = fixed[7];
+        let hour = fixed[8];
+        let min = fixed[9];
+        let sec = fixed[10];
+        let valid = fixed[11];
+        let nano = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let gps_fix_raw = fixed[16];
+        let flags = fixed[17];
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let lon_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let lat_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let height = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let h_msl = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let g_speed = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let speed = i32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let head_mot_raw = i32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let head_veh_raw = i32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let h_acc = u32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let v_acc = u32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let s_acc = u32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let head_acc_raw = u32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let reserved2 = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -12875,42 +13331,80 @@ impl<'a> LogBatch<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let content_valid = u8::from_le_bytes(r.array("content_valid")?);
-        let msg_cnt = u16::from_le_bytes(r.array("msg_cnt")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let frac_sec = i32::from_le_bytes(r.array("frac_sec")?);
-        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
-        let head_mot_raw = i32::from_le_bytes(r.array("head_mot")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let head_acc_raw = u32::from_le_bytes(r.array("head_acc")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let distance = u32::from_le_bytes(r.array("distance")?);
-        let total_distance = u32::from_le_bytes(r.array("total_distance")?);
-        let distance_std = u32::from_le_bytes(r.array("distance_std")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 100] = r.run(&[
+            ("version", 1),
+            ("content_valid", 1),
+            ("msg_cnt", 2),
+            ("itow", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+            ("frac_sec", 4),
+            ("fix_type", 1),
+            ("flags", 1),
+            ("flags2", 1),
+            ("num_sv", 1),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("g_speed", 4),
+            ("head_mot", 4),
+            ("s_acc", 4),
+            ("head_acc", 4),
+            ("p_dop", 2),
+            ("reserved0", 2),
+            ("distance", 4),
+            ("total_distance", 4),
+            ("distance_std", 4),
+            ("reserved1", 4),
+        ])?;
+        let version = fixed[0];
+        let content_valid = fixed[1];
+        let msg_cnt = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let itow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let year = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let month = fixed[10];
+        let day = fixed[11];
+        let hour = fixed[12];
+        let min = fixed[13];
+        let sec = fixed[14];
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let frac_sec = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let fix_type_raw = fixed[24];
+        let flags = fixed[25];
+        let flags2 = fixed[26];
+        let num_sv = fixed[27];
+        let lon_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let lat_raw = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let height = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let h_msl = i32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let h_acc = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let v_acc = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_n = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let vel_e = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let vel_d = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let g_speed = i32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let head_mot_raw = i32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let s_acc = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let head_acc_raw = u32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[80], fixed[81]]);
+        let reserved0 = u16::from_le_bytes([fixed[82], fixed[83]]);
+        let distance = u32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let total_distance = u32::from_le_bytes([fixed[88], fixed[89], fixed[90], fixed[91]]);
+        let distance_std = u32::from_le_bytes([fixed[92], fixed[93], fixed[94], fixed[95]]);
+        let reserved1 = u32::from_le_bytes([fixed[96], fixed[97], fixed[98], fixed[99]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -13101,11 +13595,13 @@ impl<'a> LogCreate<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let log_cfg = u8::from_le_bytes(r.array("log_cfg")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let log_size = u8::from_le_bytes(r.array("log_size")?);
-        let user_defined_size = u32::from_le_bytes(r.array("user_defined_size")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("version", 1), ("log_cfg", 1), ("reserved0", 1), ("log_size", 1), ("user_defined_size", 4)])?;
+        let version = fixed[0];
+        let log_cfg = fixed[1];
+        let reserved0 = fixed[2];
+        let log_size = fixed[3];
+        let user_defined_size = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, log_cfg, reserved0, log_size, user_defined_size, trailing })
     }
@@ -13227,15 +13723,26 @@ impl<'a> LogFindtime<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 10] = r.run(&[
+            ("version", 1),
+            ("type", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("reserved1", 1),
+        ])?;
+        let version = fixed[0];
+        let r#type = fixed[1];
+        let year = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let month = fixed[4];
+        let day = fixed[5];
+        let hour = fixed[6];
+        let minute = fixed[7];
+        let second = fixed[8];
+        let reserved1 = fixed[9];
         let trailing = r.rest();
         Ok(Self { version, r#type, year, month, day, hour, minute, second, reserved1, trailing })
     }
@@ -13308,10 +13815,11 @@ impl<'a> LogFindtimeResponse<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let entry_number = u32::from_le_bytes(r.array("entry_number")?);
+        let fixed: &[u8; 8] = r.run(&[("version", 1), ("type", 1), ("reserved0", 2), ("entry_number", 4)])?;
+        let version = fixed[0];
+        let r#type = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let entry_number = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, r#type, reserved0, entry_number, trailing })
     }
@@ -13489,26 +13997,49 @@ impl<'a> LogInfo<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let filestore_capacity = u32::from_le_bytes(r.array("filestore_capacity")?);
-        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
-        let current_max_log_size = u32::from_le_bytes(r.array("current_max_log_size")?);
-        let current_log_size = u32::from_le_bytes(r.array("current_log_size")?);
-        let entry_count = u32::from_le_bytes(r.array("entry_count")?);
-        let oldest_year = u16::from_le_bytes(r.array("oldest_year")?);
-        let oldest_month = u8::from_le_bytes(r.array("oldest_month")?);
-        let oldest_day = u8::from_le_bytes(r.array("oldest_day")?);
-        let oldest_hour = u8::from_le_bytes(r.array("oldest_hour")?);
-        let oldest_minute = u8::from_le_bytes(r.array("oldest_minute")?);
-        let oldest_second = u8::from_le_bytes(r.array("oldest_second")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let newest_year = u16::from_le_bytes(r.array("newest_year")?);
-        let newest_month = u8::from_le_bytes(r.array("newest_month")?);
-        let newest_day = u8::from_le_bytes(r.array("newest_day")?);
-        let newest_hour = u8::from_le_bytes(r.array("newest_hour")?);
-        let newest_minute = u8::from_le_bytes(r.array("newest_minute")?);
-        let newest_second = u8::from_le_bytes(r.array("newest_second")?);
-        let reserved3 = u8::from_le_bytes(r.array("reserved3")?);
-        let status = u8::from_le_bytes(r.array("status")?);
+        let fixed: &[u8; 41] = r.run(&[
+            ("filestore_capacity", 4),
+            ("reserved1", 8),
+            ("current_max_log_size", 4),
+            ("current_log_size", 4),
+            ("entry_count", 4),
+            ("oldest_year", 2),
+            ("oldest_month", 1),
+            ("oldest_day", 1),
+            ("oldest_hour", 1),
+            ("oldest_minute", 1),
+            ("oldest_second", 1),
+            ("reserved2", 1),
+            ("newest_year", 2),
+            ("newest_month", 1),
+            ("newest_day", 1),
+            ("newest_hour", 1),
+            ("newest_minute", 1),
+            ("newest_second", 1),
+            ("reserved3", 1),
+            ("status", 1),
+        ])?;
+        let filestore_capacity = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let reserved1 =
+            u64::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let current_max_log_size = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let current_log_size = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let entry_count = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let oldest_year = u16::from_le_bytes([fixed[24], fixed[25]]);
+        let oldest_month = fixed[26];
+        let oldest_day = fixed[27];
+        let oldest_hour = fixed[28];
+        let oldest_minute = fixed[29];
+        let oldest_second = fixed[30];
+        let reserved2 = fixed[31];
+        let newest_year = u16::from_le_bytes([fixed[32], fixed[33]]);
+        let newest_month = fixed[34];
+        let newest_day = fixed[35];
+        let newest_hour = fixed[36];
+        let newest_minute = fixed[37];
+        let newest_second = fixed[38];
+        let reserved3 = fixed[39];
+        let status = fixed[40];
         let reserved4 = {
             let b: [u8; 3] = r.array("reserved4")?;
             let mut le = [0u8; 4];
@@ -13643,9 +14174,10 @@ impl<'a> LogRetrieve<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let start_number = u32::from_le_bytes(r.array("start_number")?);
-        let entry_count = u32::from_le_bytes(r.array("entry_count")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 9] = r.run(&[("start_number", 4), ("entry_count", 4), ("version", 1)])?;
+        let start_number = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let entry_count = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let version = fixed[8];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
@@ -13720,9 +14252,10 @@ impl<'a> LogRetrievebatch<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("flags", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let flags = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let trailing = r.rest();
         Ok(Self { version, flags, reserved0, trailing })
     }
@@ -13831,24 +14364,44 @@ impl<'a> LogRetrievepos<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let g_speed = u32::from_le_bytes(r.array("g_speed")?);
-        let heading_raw = u32::from_le_bytes(r.array("heading")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 40] = r.run(&[
+            ("entry_index", 4),
+            ("lon", 4),
+            ("lat", 4),
+            ("h_msl", 4),
+            ("h_acc", 4),
+            ("g_speed", 4),
+            ("heading", 4),
+            ("version", 1),
+            ("fix_type", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("reserved1", 1),
+            ("num_sv", 1),
+            ("reserved2", 1),
+        ])?;
+        let entry_index = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let lon_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let h_msl = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let h_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let g_speed = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let heading_raw = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let version = fixed[28];
+        let fix_type_raw = fixed[29];
+        let year = u16::from_le_bytes([fixed[30], fixed[31]]);
+        let month = fixed[32];
+        let day = fixed[33];
+        let hour = fixed[34];
+        let minute = fixed[35];
+        let second = fixed[36];
+        let reserved1 = fixed[37];
+        let num_sv = fixed[38];
+        let reserved2 = fixed[39];
         let trailing = r.rest();
         Ok(Self {
             entry_index,
@@ -13982,15 +14535,26 @@ impl<'a> LogRetrieveposextra<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
+        let fixed: &[u8; 13] = r.run(&[
+            ("entry_index", 4),
+            ("version", 1),
+            ("reserved1", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+        ])?;
+        let entry_index = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let reserved1 = fixed[5];
+        let year = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let month = fixed[8];
+        let day = fixed[9];
+        let hour = fixed[10];
+        let minute = fixed[11];
+        let second = fixed[12];
         let reserved2 = {
             let b: [u8; 3] = r.array("reserved2")?;
             let mut le = [0u8; 4];
@@ -14136,17 +14700,30 @@ impl<'a> LogRetrievestring<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let byte_count = u16::from_le_bytes(r.array("byte_count")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("entry_index", 4),
+            ("version", 1),
+            ("reserved1", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("reserved2", 1),
+            ("byte_count", 2),
+        ])?;
+        let entry_index = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let reserved1 = fixed[5];
+        let year = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let month = fixed[8];
+        let day = fixed[9];
+        let hour = fixed[10];
+        let minute = fixed[11];
+        let second = fixed[12];
+        let reserved2 = fixed[13];
+        let byte_count = u16::from_le_bytes([fixed[14], fixed[15]]);
         let bytes = r.group(Some(usize::from(byte_count)), 0, 256, 0, "bytes")?;
         let trailing = r.rest();
         Ok(Self {
@@ -14293,11 +14870,13 @@ impl<'a> MgaAck<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let info_code = u8::from_le_bytes(r.array("info_code")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
-        let msg_payload_start = r.bytes(4, "msg_payload_start")?;
+        let fixed: &[u8; 8] =
+            r.run(&[("type", 1), ("version", 1), ("info_code", 1), ("msg_id", 1), ("msg_payload_start", 4)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let info_code = fixed[2];
+        let msg_id = fixed[3];
+        let msg_payload_start = &fixed[4..8];
         let trailing = r.rest();
         Ok(Self { r#type, version, info_code, msg_id, msg_payload_start, trailing })
     }
@@ -14378,16 +14957,28 @@ impl<'a> MgaAno<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let year = u8::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let data = r.bytes(64, "data")?;
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 76] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("gnss_id", 1),
+            ("year", 1),
+            ("month", 1),
+            ("day", 1),
+            ("reserved0", 1),
+            ("data", 64),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let gnss_id_raw = fixed[3];
+        let year = fixed[4];
+        let month = fixed[5];
+        let day = fixed[6];
+        let reserved0 = fixed[7];
+        let data = &fixed[8..72];
+        let reserved1 = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, sv_id, gnss_id_raw, year, month, day, reserved0, data, reserved1, trailing })
     }
@@ -14618,36 +15209,68 @@ impl<'a> MgaBdsEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let sat_h1 = u8::from_le_bytes(r.array("sat_h1")?);
-        let iodc = u8::from_le_bytes(r.array("iodc")?);
-        let a2_raw = i16::from_le_bytes(r.array("a2")?);
-        let a1_raw = i32::from_le_bytes(r.array("a1")?);
-        let a0_raw = i32::from_le_bytes(r.array("a0")?);
-        let toc = u32::from_le_bytes(r.array("toc")?);
-        let tgd1_raw = i16::from_le_bytes(r.array("tgd1")?);
-        let urai = u8::from_le_bytes(r.array("urai")?);
-        let iode = u8::from_le_bytes(r.array("iode")?);
-        let toe = u32::from_le_bytes(r.array("toe")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let e_raw = u32::from_le_bytes(r.array("e")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let deltan_raw = i16::from_le_bytes(r.array("deltan")?);
-        let idot_raw = i16::from_le_bytes(r.array("idot")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
-        let i0_raw = i32::from_le_bytes(r.array("i0")?);
-        let cuc_raw = i32::from_le_bytes(r.array("cuc")?);
-        let cus_raw = i32::from_le_bytes(r.array("cus")?);
-        let crc_raw = i32::from_le_bytes(r.array("crc")?);
-        let crs_raw = i32::from_le_bytes(r.array("crs")?);
-        let cic_raw = i32::from_le_bytes(r.array("cic")?);
-        let cis_raw = i32::from_le_bytes(r.array("cis")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 88] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("sat_h1", 1),
+            ("iodc", 1),
+            ("a2", 2),
+            ("a1", 4),
+            ("a0", 4),
+            ("toc", 4),
+            ("tgd1", 2),
+            ("urai", 1),
+            ("iode", 1),
+            ("toe", 4),
+            ("sqrt_a", 4),
+            ("e", 4),
+            ("omega", 4),
+            ("deltan", 2),
+            ("idot", 2),
+            ("m0", 4),
+            ("omega0", 4),
+            ("omega_dot", 4),
+            ("i0", 4),
+            ("cuc", 4),
+            ("cus", 4),
+            ("crc", 4),
+            ("crs", 4),
+            ("cic", 4),
+            ("cis", 4),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let sat_h1 = fixed[4];
+        let iodc = fixed[5];
+        let a2_raw = i16::from_le_bytes([fixed[6], fixed[7]]);
+        let a1_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let a0_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let toc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let tgd1_raw = i16::from_le_bytes([fixed[20], fixed[21]]);
+        let urai = fixed[22];
+        let iode = fixed[23];
+        let toe = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let e_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let omega_raw = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let deltan_raw = i16::from_le_bytes([fixed[40], fixed[41]]);
+        let idot_raw = i16::from_le_bytes([fixed[42], fixed[43]]);
+        let m0_raw = i32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let omega0_raw = i32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let omega_dot_raw = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let i0_raw = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let cuc_raw = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let cus_raw = i32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let crc_raw = i32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let crs_raw = i32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let cic_raw = i32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let cis_raw = i32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let reserved1 = u32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -14887,22 +15510,40 @@ impl<'a> MgaBdsAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let wna = u8::from_le_bytes(r.array("wna")?);
-        let toa = u8::from_le_bytes(r.array("toa")?);
-        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let e_raw = u32::from_le_bytes(r.array("e")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
-        let a0_raw = i16::from_le_bytes(r.array("a0")?);
-        let a1_raw = i16::from_le_bytes(r.array("a1")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 40] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("wna", 1),
+            ("toa", 1),
+            ("delta_i", 2),
+            ("sqrt_a", 4),
+            ("e", 4),
+            ("omega", 4),
+            ("m0", 4),
+            ("omega0", 4),
+            ("omega_dot", 4),
+            ("a0", 2),
+            ("a1", 2),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let wna = fixed[4];
+        let toa = fixed[5];
+        let delta_i_raw = i16::from_le_bytes([fixed[6], fixed[7]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let e_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let omega_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let m0_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let omega0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let omega_dot_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let a0_raw = i16::from_le_bytes([fixed[32], fixed[33]]);
+        let a1_raw = i16::from_le_bytes([fixed[34], fixed[35]]);
+        let reserved1 = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -15047,9 +15688,10 @@ impl<'a> MgaBdsHealth<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("type", 1), ("version", 1), ("reserved0", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let health_code = r.group(Some(30), 0, 65535, 4, "health_code")?;
         let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
         let trailing = r.rest();
@@ -15147,18 +15789,32 @@ impl<'a> MgaBdsUtc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let a0_utc_raw = i32::from_le_bytes(r.array("a0_utc")?);
-        let a1_utc_raw = i32::from_le_bytes(r.array("a1_utc")?);
-        let dt_ls = i8::from_le_bytes(r.array("dt_ls")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let wn_rec = u8::from_le_bytes(r.array("wn_rec")?);
-        let wn_lsf = u8::from_le_bytes(r.array("wn_lsf")?);
-        let d_n = u8::from_le_bytes(r.array("d_n")?);
-        let dt_lsf = i8::from_le_bytes(r.array("dt_lsf")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("a0_utc", 4),
+            ("a1_utc", 4),
+            ("dt_ls", 1),
+            ("reserved1", 1),
+            ("wn_rec", 1),
+            ("wn_lsf", 1),
+            ("d_n", 1),
+            ("dt_lsf", 1),
+            ("reserved2", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let a0_utc_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let a1_utc_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let dt_ls = i8::from_le_bytes([fixed[12]]);
+        let reserved1 = fixed[13];
+        let wn_rec = fixed[14];
+        let wn_lsf = fixed[15];
+        let d_n = fixed[16];
+        let dt_lsf = i8::from_le_bytes([fixed[17]]);
+        let reserved2 = u16::from_le_bytes([fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -15294,18 +15950,32 @@ impl<'a> MgaBdsIono<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let alpha0_raw = i8::from_le_bytes(r.array("alpha0")?);
-        let alpha1_raw = i8::from_le_bytes(r.array("alpha1")?);
-        let alpha2_raw = i8::from_le_bytes(r.array("alpha2")?);
-        let alpha3_raw = i8::from_le_bytes(r.array("alpha3")?);
-        let beta0 = i8::from_le_bytes(r.array("beta0")?);
-        let beta1 = i8::from_le_bytes(r.array("beta1")?);
-        let beta2 = i8::from_le_bytes(r.array("beta2")?);
-        let beta3 = i8::from_le_bytes(r.array("beta3")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("alpha0", 1),
+            ("alpha1", 1),
+            ("alpha2", 1),
+            ("alpha3", 1),
+            ("beta0", 1),
+            ("beta1", 1),
+            ("beta2", 1),
+            ("beta3", 1),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let alpha0_raw = i8::from_le_bytes([fixed[4]]);
+        let alpha1_raw = i8::from_le_bytes([fixed[5]]);
+        let alpha2_raw = i8::from_le_bytes([fixed[6]]);
+        let alpha3_raw = i8::from_le_bytes([fixed[7]]);
+        let beta0 = i8::from_le_bytes([fixed[8]]);
+        let beta1 = i8::from_le_bytes([fixed[9]]);
+        let beta2 = i8::from_le_bytes([fixed[10]]);
+        let beta3 = i8::from_le_bytes([fixed[11]]);
+        let reserved1 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -15516,10 +16186,11 @@ impl<'a> MgaFlashData<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sequence = u16::from_le_bytes(r.array("sequence")?);
-        let size = u16::from_le_bytes(r.array("size")?);
+        let fixed: &[u8; 6] = r.run(&[("type", 1), ("version", 1), ("sequence", 2), ("size", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sequence = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let size = u16::from_le_bytes([fixed[4], fixed[5]]);
         let data = r.left(0);
         let trailing = r.rest();
         Ok(Self { r#type, version, sequence, size, data, trailing })
@@ -15586,8 +16257,9 @@ impl<'a> MgaFlashStop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 2] = r.run(&[("type", 1), ("version", 1)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
         let trailing = r.rest();
         Ok(Self { r#type, version, trailing })
     }
@@ -15658,11 +16330,12 @@ impl<'a> MgaFlashAck<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let ack = u8::from_le_bytes(r.array("ack")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let sequence_raw = u16::from_le_bytes(r.array("sequence")?);
+        let fixed: &[u8; 6] = r.run(&[("type", 1), ("version", 1), ("ack", 1), ("reserved1", 1), ("sequence", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let ack = fixed[2];
+        let reserved1 = fixed[3];
+        let sequence_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, ack, reserved1, sequence_raw, trailing })
     }
@@ -15889,39 +16562,74 @@ impl<'a> MgaGalEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let iod_nav = u16::from_le_bytes(r.array("iod_nav")?);
-        let delta_n_raw = i16::from_le_bytes(r.array("delta_n")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let e_raw = u32::from_le_bytes(r.array("e")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let i0_raw = i32::from_le_bytes(r.array("i0")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
-        let i_dot_raw = i16::from_le_bytes(r.array("i_dot")?);
-        let cuc_raw = i16::from_le_bytes(r.array("cuc")?);
-        let cus_raw = i16::from_le_bytes(r.array("cus")?);
-        let crc_raw = i16::from_le_bytes(r.array("crc")?);
-        let crs_raw = i16::from_le_bytes(r.array("crs")?);
-        let cic_raw = i16::from_le_bytes(r.array("cic")?);
-        let cis_raw = i16::from_le_bytes(r.array("cis")?);
-        let toe = u16::from_le_bytes(r.array("toe")?);
-        let af0_raw = i32::from_le_bytes(r.array("af0")?);
-        let af1_raw = i32::from_le_bytes(r.array("af1")?);
-        let af2_raw = i8::from_le_bytes(r.array("af2")?);
-        let sisa_index_e1_e5b = u8::from_le_bytes(r.array("sisa_index_e1_e5b")?);
-        let toc = u16::from_le_bytes(r.array("toc")?);
-        let bgd_e1_e5b_raw = i16::from_le_bytes(r.array("bgd_e1_e5b")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let health_e1b = u8::from_le_bytes(r.array("health_e1b")?);
-        let data_validity_e1b = u8::from_le_bytes(r.array("data_validity_e1b")?);
-        let health_e5b = u8::from_le_bytes(r.array("health_e5b")?);
-        let data_validity_e5b = u8::from_le_bytes(r.array("data_validity_e5b")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 76] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("iod_nav", 2),
+            ("delta_n", 2),
+            ("m0", 4),
+            ("e", 4),
+            ("sqrt_a", 4),
+            ("omega0", 4),
+            ("i0", 4),
+            ("omega", 4),
+            ("omega_dot", 4),
+            ("i_dot", 2),
+            ("cuc", 2),
+            ("cus", 2),
+            ("crc", 2),
+            ("crs", 2),
+            ("cic", 2),
+            ("cis", 2),
+            ("toe", 2),
+            ("af0", 4),
+            ("af1", 4),
+            ("af2", 1),
+            ("sisa_index_e1_e5b", 1),
+            ("toc", 2),
+            ("bgd_e1_e5b", 2),
+            ("reserved1", 2),
+            ("health_e1b", 1),
+            ("data_validity_e1b", 1),
+            ("health_e5b", 1),
+            ("data_validity_e5b", 1),
+            ("reserved2", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let iod_nav = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let delta_n_raw = i16::from_le_bytes([fixed[6], fixed[7]]);
+        let m0_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let e_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let omega0_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let i0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let omega_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let omega_dot_raw = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let i_dot_raw = i16::from_le_bytes([fixed[36], fixed[37]]);
+        let cuc_raw = i16::from_le_bytes([fixed[38], fixed[39]]);
+        let cus_raw = i16::from_le_bytes([fixed[40], fixed[41]]);
+        let crc_raw = i16::from_le_bytes([fixed[42], fixed[43]]);
+        let crs_raw = i16::from_le_bytes([fixed[44], fixed[45]]);
+        let cic_raw = i16::from_le_bytes([fixed[46], fixed[47]]);
+        let cis_raw = i16::from_le_bytes([fixed[48], fixed[49]]);
+        let toe = u16::from_le_bytes([fixed[50], fixed[51]]);
+        let af0_raw = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let af1_raw = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let af2_raw = i8::from_le_bytes([fixed[60]]);
+        let sisa_index_e1_e5b = fixed[61];
+        let toc = u16::from_le_bytes([fixed[62], fixed[63]]);
+        let bgd_e1_e5b_raw = i16::from_le_bytes([fixed[64], fixed[65]]);
+        let reserved1 = u16::from_le_bytes([fixed[66], fixed[67]]);
+        let health_e1b = fixed[68];
+        let data_validity_e1b = fixed[69];
+        let health_e5b = fixed[70];
+        let data_validity_e5b = fixed[71];
+        let reserved2 = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -16176,25 +16884,46 @@ impl<'a> MgaGalAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let ioda = u8::from_le_bytes(r.array("ioda")?);
-        let alm_w_na = u8::from_le_bytes(r.array("alm_w_na")?);
-        let toa = u16::from_le_bytes(r.array("toa")?);
-        let delta_sqrt_a_raw = i16::from_le_bytes(r.array("delta_sqrt_a")?);
-        let e_raw = u16::from_le_bytes(r.array("e")?);
-        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
-        let omega0_raw = i16::from_le_bytes(r.array("omega0")?);
-        let omega_dot_raw = i16::from_le_bytes(r.array("omega_dot")?);
-        let omega_raw = i16::from_le_bytes(r.array("omega")?);
-        let m0_raw = i16::from_le_bytes(r.array("m0")?);
-        let af0_raw = i16::from_le_bytes(r.array("af0")?);
-        let af1_raw = i16::from_le_bytes(r.array("af1")?);
-        let health_e1b = u8::from_le_bytes(r.array("health_e1b")?);
-        let health_e5b = u8::from_le_bytes(r.array("health_e5b")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 32] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("ioda", 1),
+            ("alm_w_na", 1),
+            ("toa", 2),
+            ("delta_sqrt_a", 2),
+            ("e", 2),
+            ("delta_i", 2),
+            ("omega0", 2),
+            ("omega_dot", 2),
+            ("omega", 2),
+            ("m0", 2),
+            ("af0", 2),
+            ("af1", 2),
+            ("health_e1b", 1),
+            ("health_e5b", 1),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let ioda = fixed[4];
+        let alm_w_na = fixed[5];
+        let toa = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let delta_sqrt_a_raw = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let e_raw = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let delta_i_raw = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let omega0_raw = i16::from_le_bytes([fixed[14], fixed[15]]);
+        let omega_dot_raw = i16::from_le_bytes([fixed[16], fixed[17]]);
+        let omega_raw = i16::from_le_bytes([fixed[18], fixed[19]]);
+        let m0_raw = i16::from_le_bytes([fixed[20], fixed[21]]);
+        let af0_raw = i16::from_le_bytes([fixed[22], fixed[23]]);
+        let af1_raw = i16::from_le_bytes([fixed[24], fixed[25]]);
+        let health_e1b = fixed[26];
+        let health_e5b = fixed[27];
+        let reserved1 = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -16340,14 +17069,24 @@ impl<'a> MgaGalTimeoffset<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let a0_g_raw = i16::from_le_bytes(r.array("a0_g")?);
-        let a1_g_raw = i16::from_le_bytes(r.array("a1_g")?);
-        let t0_g = u8::from_le_bytes(r.array("t0_g")?);
-        let wn0_g = u8::from_le_bytes(r.array("wn0_g")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("a0_g", 2),
+            ("a1_g", 2),
+            ("t0_g", 1),
+            ("wn0_g", 1),
+            ("reserved1", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let a0_g_raw = i16::from_le_bytes([fixed[4], fixed[5]]);
+        let a1_g_raw = i16::from_le_bytes([fixed[6], fixed[7]]);
+        let t0_g = fixed[8];
+        let wn0_g = fixed[9];
+        let reserved1 = u16::from_le_bytes([fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, reserved0, a0_g_raw, a1_g_raw, t0_g, wn0_g, reserved1, trailing })
     }
@@ -16451,18 +17190,32 @@ impl<'a> MgaGalUtc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let a0_raw = i32::from_le_bytes(r.array("a0")?);
-        let a1_raw = i32::from_le_bytes(r.array("a1")?);
-        let dt_ls = i8::from_le_bytes(r.array("dt_ls")?);
-        let tot = u8::from_le_bytes(r.array("tot")?);
-        let wnt = u8::from_le_bytes(r.array("wnt")?);
-        let wn_lsf = u8::from_le_bytes(r.array("wn_lsf")?);
-        let d_n = u8::from_le_bytes(r.array("d_n")?);
-        let dt_lsf = i8::from_le_bytes(r.array("dt_lsf")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("a0", 4),
+            ("a1", 4),
+            ("dt_ls", 1),
+            ("tot", 1),
+            ("wnt", 1),
+            ("wn_lsf", 1),
+            ("d_n", 1),
+            ("dt_lsf", 1),
+            ("reserved1", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let a0_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let a1_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let dt_ls = i8::from_le_bytes([fixed[12]]);
+        let tot = fixed[13];
+        let wnt = fixed[14];
+        let wn_lsf = fixed[15];
+        let d_n = fixed[16];
+        let dt_lsf = i8::from_le_bytes([fixed[17]]);
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -16660,29 +17413,54 @@ impl<'a> MgaGloEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let ft = u8::from_le_bytes(r.array("ft")?);
-        let b = u8::from_le_bytes(r.array("b")?);
-        let m = u8::from_le_bytes(r.array("m")?);
-        let h = i8::from_le_bytes(r.array("h")?);
-        let x_raw = i32::from_le_bytes(r.array("x")?);
-        let y_raw = i32::from_le_bytes(r.array("y")?);
-        let z_raw = i32::from_le_bytes(r.array("z")?);
-        let dx_raw = i32::from_le_bytes(r.array("dx")?);
-        let dy_raw = i32::from_le_bytes(r.array("dy")?);
-        let dz_raw = i32::from_le_bytes(r.array("dz")?);
-        let ddx_raw = i8::from_le_bytes(r.array("ddx")?);
-        let ddy_raw = i8::from_le_bytes(r.array("ddy")?);
-        let ddz_raw = i8::from_le_bytes(r.array("ddz")?);
-        let tb = u8::from_le_bytes(r.array("tb")?);
-        let gamma_raw = i16::from_le_bytes(r.array("gamma")?);
-        let e = u8::from_le_bytes(r.array("e")?);
-        let delta_tau_raw = i8::from_le_bytes(r.array("delta_tau")?);
-        let tau_raw = i32::from_le_bytes(r.array("tau")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("ft", 1),
+            ("b", 1),
+            ("m", 1),
+            ("h", 1),
+            ("x", 4),
+            ("y", 4),
+            ("z", 4),
+            ("dx", 4),
+            ("dy", 4),
+            ("dz", 4),
+            ("ddx", 1),
+            ("ddy", 1),
+            ("ddz", 1),
+            ("tb", 1),
+            ("gamma", 2),
+            ("e", 1),
+            ("delta_tau", 1),
+            ("tau", 4),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let ft = fixed[4];
+        let b = fixed[5];
+        let m = fixed[6];
+        let h = i8::from_le_bytes([fixed[7]]);
+        let x_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let y_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let z_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let dx_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let dy_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let dz_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let ddx_raw = i8::from_le_bytes([fixed[32]]);
+        let ddy_raw = i8::from_le_bytes([fixed[33]]);
+        let ddz_raw = i8::from_le_bytes([fixed[34]]);
+        let tb = fixed[35];
+        let gamma_raw = i16::from_le_bytes([fixed[36], fixed[37]]);
+        let e = fixed[38];
+        let delta_tau_raw = i8::from_le_bytes([fixed[39]]);
+        let tau_raw = i32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let reserved1 = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -16891,23 +17669,42 @@ impl<'a> MgaGloAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let n = u16::from_le_bytes(r.array("n")?);
-        let m = u8::from_le_bytes(r.array("m")?);
-        let c = u8::from_le_bytes(r.array("c")?);
-        let tau_raw = i16::from_le_bytes(r.array("tau")?);
-        let epsilon_raw = u16::from_le_bytes(r.array("epsilon")?);
-        let lambda_raw = i32::from_le_bytes(r.array("lambda_")?);
-        let delta_i_raw = i32::from_le_bytes(r.array("delta_i")?);
-        let t_lambda_raw = u32::from_le_bytes(r.array("t_lambda")?);
-        let delta_t_raw = i32::from_le_bytes(r.array("delta_t")?);
-        let delta_dt_raw = i8::from_le_bytes(r.array("delta_dt")?);
-        let h = i8::from_le_bytes(r.array("h")?);
-        let omega_raw = i16::from_le_bytes(r.array("omega")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("n", 2),
+            ("m", 1),
+            ("c", 1),
+            ("tau", 2),
+            ("epsilon", 2),
+            ("lambda_", 4),
+            ("delta_i", 4),
+            ("t_lambda", 4),
+            ("delta_t", 4),
+            ("delta_dt", 1),
+            ("h", 1),
+            ("omega", 2),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let n = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let m = fixed[6];
+        let c = fixed[7];
+        let tau_raw = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let epsilon_raw = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let lambda_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let delta_i_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let t_lambda_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let delta_t_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let delta_dt_raw = i8::from_le_bytes([fixed[28]]);
+        let h = i8::from_le_bytes([fixed[29]]);
+        let omega_raw = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let reserved1 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -17056,14 +17853,24 @@ impl<'a> MgaGloTimeoffset<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let n = u16::from_le_bytes(r.array("n")?);
-        let tau_c_raw = i32::from_le_bytes(r.array("tau_c")?);
-        let tau_gps_raw = i32::from_le_bytes(r.array("tau_gps")?);
-        let b1_raw = i16::from_le_bytes(r.array("b1")?);
-        let b2_raw = i16::from_le_bytes(r.array("b2")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("n", 2),
+            ("tau_c", 4),
+            ("tau_gps", 4),
+            ("b1", 2),
+            ("b2", 2),
+            ("reserved0", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let n = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let tau_c_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let tau_gps_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let b1_raw = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let b2_raw = i16::from_le_bytes([fixed[14], fixed[15]]);
+        let reserved0 = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, n, tau_c_raw, tau_gps_raw, b1_raw, b2_raw, reserved0, trailing })
     }
@@ -17292,37 +18099,70 @@ impl<'a> MgaGpsEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let fit_interval = u8::from_le_bytes(r.array("fit_interval")?);
-        let ura_index = u8::from_le_bytes(r.array("ura_index")?);
-        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
-        let tgd_raw = i8::from_le_bytes(r.array("tgd")?);
-        let iodc = u16::from_le_bytes(r.array("iodc")?);
-        let toc = u16::from_le_bytes(r.array("toc")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let af2_raw = i8::from_le_bytes(r.array("af2")?);
-        let af1_raw = i16::from_le_bytes(r.array("af1")?);
-        let af0_raw = i32::from_le_bytes(r.array("af0")?);
-        let crs_raw = i16::from_le_bytes(r.array("crs")?);
-        let delta_n_raw = i16::from_le_bytes(r.array("delta_n")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let cuc_raw = i16::from_le_bytes(r.array("cuc")?);
-        let cus_raw = i16::from_le_bytes(r.array("cus")?);
-        let e_raw = u32::from_le_bytes(r.array("e")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let toe = u16::from_le_bytes(r.array("toe")?);
-        let cic_raw = i16::from_le_bytes(r.array("cic")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let cis_raw = i16::from_le_bytes(r.array("cis")?);
-        let crc_raw = i16::from_le_bytes(r.array("crc")?);
-        let i0_raw = i32::from_le_bytes(r.array("i0")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
-        let idot_raw = i16::from_le_bytes(r.array("idot")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 68] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("fit_interval", 1),
+            ("ura_index", 1),
+            ("sv_health", 1),
+            ("tgd", 1),
+            ("iodc", 2),
+            ("toc", 2),
+            ("reserved1", 1),
+            ("af2", 1),
+            ("af1", 2),
+            ("af0", 4),
+            ("crs", 2),
+            ("delta_n", 2),
+            ("m0", 4),
+            ("cuc", 2),
+            ("cus", 2),
+            ("e", 4),
+            ("sqrt_a", 4),
+            ("toe", 2),
+            ("cic", 2),
+            ("omega0", 4),
+            ("cis", 2),
+            ("crc", 2),
+            ("i0", 4),
+            ("omega", 4),
+            ("omega_dot", 4),
+            ("idot", 2),
+            ("reserved2", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let fit_interval = fixed[4];
+        let ura_index = fixed[5];
+        let sv_health = fixed[6];
+        let tgd_raw = i8::from_le_bytes([fixed[7]]);
+        let iodc = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let toc = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let reserved1 = fixed[12];
+        let af2_raw = i8::from_le_bytes([fixed[13]]);
+        let af1_raw = i16::from_le_bytes([fixed[14], fixed[15]]);
+        let af0_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let crs_raw = i16::from_le_bytes([fixed[20], fixed[21]]);
+        let delta_n_raw = i16::from_le_bytes([fixed[22], fixed[23]]);
+        let m0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cuc_raw = i16::from_le_bytes([fixed[28], fixed[29]]);
+        let cus_raw = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let e_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let toe = u16::from_le_bytes([fixed[40], fixed[41]]);
+        let cic_raw = i16::from_le_bytes([fixed[42], fixed[43]]);
+        let omega0_raw = i32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let cis_raw = i16::from_le_bytes([fixed[48], fixed[49]]);
+        let crc_raw = i16::from_le_bytes([fixed[50], fixed[51]]);
+        let i0_raw = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let omega_raw = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let omega_dot_raw = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let idot_raw = i16::from_le_bytes([fixed[64], fixed[65]]);
+        let reserved2 = u16::from_le_bytes([fixed[66], fixed[67]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -17565,22 +18405,40 @@ impl<'a> MgaGpsAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
-        let e_raw = u16::from_le_bytes(r.array("e")?);
-        let alm_w_na = u8::from_le_bytes(r.array("alm_w_na")?);
-        let toa = u8::from_le_bytes(r.array("toa")?);
-        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
-        let omega_dot_raw = i16::from_le_bytes(r.array("omega_dot")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let af0_raw = i16::from_le_bytes(r.array("af0")?);
-        let af1_raw = i16::from_le_bytes(r.array("af1")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("sv_health", 1),
+            ("e", 2),
+            ("alm_w_na", 1),
+            ("toa", 1),
+            ("delta_i", 2),
+            ("omega_dot", 2),
+            ("sqrt_a", 4),
+            ("omega0", 4),
+            ("omega", 4),
+            ("m0", 4),
+            ("af0", 2),
+            ("af1", 2),
+            ("reserved0", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let sv_health = fixed[3];
+        let e_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let alm_w_na = fixed[6];
+        let toa = fixed[7];
+        let delta_i_raw = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let omega_dot_raw = i16::from_le_bytes([fixed[10], fixed[11]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let omega0_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let omega_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let m0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let af0_raw = i16::from_le_bytes([fixed[28], fixed[29]]);
+        let af1_raw = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let reserved0 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -17725,9 +18583,10 @@ impl<'a> MgaGpsHealth<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("type", 1), ("version", 1), ("reserved0", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let health_code = r.group(Some(32), 0, 65535, 4, "health_code")?;
         let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
         let trailing = r.rest();
@@ -17825,18 +18684,32 @@ impl<'a> MgaGpsUtc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let utc_a0_raw = i32::from_le_bytes(r.array("utc_a0")?);
-        let utc_a1_raw = i32::from_le_bytes(r.array("utc_a1")?);
-        let utc_dt_ls = i8::from_le_bytes(r.array("utc_dt_ls")?);
-        let utc_tot = u8::from_le_bytes(r.array("utc_tot")?);
-        let utc_w_nt = u8::from_le_bytes(r.array("utc_w_nt")?);
-        let utc_w_nlsf = u8::from_le_bytes(r.array("utc_w_nlsf")?);
-        let utc_dn = u8::from_le_bytes(r.array("utc_dn")?);
-        let utc_dt_lsf = i8::from_le_bytes(r.array("utc_dt_lsf")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("utc_a0", 4),
+            ("utc_a1", 4),
+            ("utc_dt_ls", 1),
+            ("utc_tot", 1),
+            ("utc_w_nt", 1),
+            ("utc_w_nlsf", 1),
+            ("utc_dn", 1),
+            ("utc_dt_lsf", 1),
+            ("reserved1", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let utc_a0_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let utc_a1_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let utc_dt_ls = i8::from_le_bytes([fixed[12]]);
+        let utc_tot = fixed[13];
+        let utc_w_nt = fixed[14];
+        let utc_w_nlsf = fixed[15];
+        let utc_dn = fixed[16];
+        let utc_dt_lsf = i8::from_le_bytes([fixed[17]]);
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -17972,18 +18845,32 @@ impl<'a> MgaGpsIono<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let iono_alpha0_raw = i8::from_le_bytes(r.array("iono_alpha0")?);
-        let iono_alpha1_raw = i8::from_le_bytes(r.array("iono_alpha1")?);
-        let iono_alpha2_raw = i8::from_le_bytes(r.array("iono_alpha2")?);
-        let iono_alpha3_raw = i8::from_le_bytes(r.array("iono_alpha3")?);
-        let iono_beta0 = i8::from_le_bytes(r.array("iono_beta0")?);
-        let iono_beta1 = i8::from_le_bytes(r.array("iono_beta1")?);
-        let iono_beta2 = i8::from_le_bytes(r.array("iono_beta2")?);
-        let iono_beta3 = i8::from_le_bytes(r.array("iono_beta3")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("iono_alpha0", 1),
+            ("iono_alpha1", 1),
+            ("iono_alpha2", 1),
+            ("iono_alpha3", 1),
+            ("iono_beta0", 1),
+            ("iono_beta1", 1),
+            ("iono_beta2", 1),
+            ("iono_beta3", 1),
+            ("reserved1", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let iono_alpha0_raw = i8::from_le_bytes([fixed[4]]);
+        let iono_alpha1_raw = i8::from_le_bytes([fixed[5]]);
+        let iono_alpha2_raw = i8::from_le_bytes([fixed[6]]);
+        let iono_alpha3_raw = i8::from_le_bytes([fixed[7]]);
+        let iono_beta0 = i8::from_le_bytes([fixed[8]]);
+        let iono_beta1 = i8::from_le_bytes([fixed[9]]);
+        let iono_beta2 = i8::from_le_bytes([fixed[10]]);
+        let iono_beta3 = i8::from_le_bytes([fixed[11]]);
+        let reserved1 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -18091,13 +18978,22 @@ impl<'a> MgaIniPosXyz<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
-        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
-        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
-        let pos_acc = u32::from_le_bytes(r.array("pos_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("ecef_x", 4),
+            ("ecef_y", 4),
+            ("ecef_z", 4),
+            ("pos_acc", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let ecef_x = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pos_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, reserved0, ecef_x, ecef_y, ecef_z, pos_acc, trailing })
     }
@@ -18187,13 +19083,22 @@ impl<'a> MgaIniPosLlh<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let alt = i32::from_le_bytes(r.array("alt")?);
-        let pos_acc = u32::from_le_bytes(r.array("pos_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("lat", 4),
+            ("lon", 4),
+            ("alt", 4),
+            ("pos_acc", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let lat_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lon_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let alt = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pos_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, reserved0, lat_raw, lon_raw, alt, pos_acc, trailing })
     }
@@ -18315,21 +19220,38 @@ impl<'a> MgaIniTimeUtc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#ref = u8::from_le_bytes(r.array("ref")?);
-        let leap_secs = i8::from_le_bytes(r.array("leap_secs")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let ns = u32::from_le_bytes(r.array("ns")?);
-        let t_acc_s = u16::from_le_bytes(r.array("t_acc_s")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let t_acc_ns = u32::from_le_bytes(r.array("t_acc_ns")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("ref", 1),
+            ("leap_secs", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("reserved0", 1),
+            ("ns", 4),
+            ("t_acc_s", 2),
+            ("reserved1", 2),
+            ("t_acc_ns", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let r#ref = fixed[2];
+        let leap_secs = i8::from_le_bytes([fixed[3]]);
+        let year = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let month = fixed[6];
+        let day = fixed[7];
+        let hour = fixed[8];
+        let minute = fixed[9];
+        let second = fixed[10];
+        let reserved0 = fixed[11];
+        let ns = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let t_acc_s = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let t_acc_ns = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -18481,17 +19403,30 @@ impl<'a> MgaIniTimeGnss<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#ref = u8::from_le_bytes(r.array("ref")?);
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let week = u16::from_le_bytes(r.array("week")?);
-        let tow = u32::from_le_bytes(r.array("tow")?);
-        let ns = u32::from_le_bytes(r.array("ns")?);
-        let t_acc_s = u16::from_le_bytes(r.array("t_acc_s")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let t_acc_ns = u32::from_le_bytes(r.array("t_acc_ns")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("ref", 1),
+            ("gnss_id", 1),
+            ("reserved0", 2),
+            ("week", 2),
+            ("tow", 4),
+            ("ns", 4),
+            ("t_acc_s", 2),
+            ("reserved1", 2),
+            ("t_acc_ns", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let r#ref = fixed[2];
+        let gnss_id_raw = fixed[3];
+        let reserved0 = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let week = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let tow = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ns = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let t_acc_s = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let reserved1 = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let t_acc_ns = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -18595,11 +19530,13 @@ impl<'a> MgaIniClkd<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let clk_d = i32::from_le_bytes(r.array("clk_d")?);
-        let clk_d_acc = u32::from_le_bytes(r.array("clk_d_acc")?);
+        let fixed: &[u8; 12] =
+            r.run(&[("type", 1), ("version", 1), ("reserved0", 2), ("clk_d", 4), ("clk_d_acc", 4)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let clk_d = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let clk_d_acc = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, reserved0, clk_d, clk_d_acc, trailing })
     }
@@ -18694,12 +19631,14 @@ impl<'a> MgaIniFreq<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let freq_raw = i32::from_le_bytes(r.array("freq")?);
-        let freq_acc = u32::from_le_bytes(r.array("freq_acc")?);
+        let fixed: &[u8; 12] =
+            r.run(&[("type", 1), ("version", 1), ("reserved0", 1), ("flags", 1), ("freq", 4), ("freq_acc", 4)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = fixed[2];
+        let flags = fixed[3];
+        let freq_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let freq_acc = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, reserved0, flags, freq_raw, freq_acc, trailing })
     }
@@ -18824,20 +19763,44 @@ impl<'a> MgaIniEop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let d2k_ref = u16::from_le_bytes(r.array("d2k_ref")?);
-        let d2k_max = u16::from_le_bytes(r.array("d2k_max")?);
-        let xp_p0_raw = i32::from_le_bytes(r.array("xp_p0")?);
-        let xp_p1_raw = i32::from_le_bytes(r.array("xp_p1")?);
-        let yp_p0_raw = i32::from_le_bytes(r.array("yp_p0")?);
-        let yp_p1_raw = i32::from_le_bytes(r.array("yp_p1")?);
-        let d_ut1_raw = i32::from_le_bytes(r.array("d_ut1")?);
-        let dd_ut1_raw = i32::from_le_bytes(r.array("dd_ut1")?);
-        let reserved1 = u128::from_le_bytes(r.array("reserved1")?);
-        let reserved2 = u128::from_le_bytes(r.array("reserved2")?);
-        let reserved3 = u64::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 72] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("reserved0", 2),
+            ("d2k_ref", 2),
+            ("d2k_max", 2),
+            ("xp_p0", 4),
+            ("xp_p1", 4),
+            ("yp_p0", 4),
+            ("yp_p1", 4),
+            ("d_ut1", 4),
+            ("dd_ut1", 4),
+            ("reserved1", 16),
+            ("reserved2", 16),
+            ("reserved3", 8),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let d2k_ref = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let d2k_max = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let xp_p0_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let xp_p1_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let yp_p0_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let yp_p1_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let d_ut1_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let dd_ut1_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let reserved1 = u128::from_le_bytes([
+            fixed[32], fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39], fixed[40],
+            fixed[41], fixed[42], fixed[43], fixed[44], fixed[45], fixed[46], fixed[47],
+        ]);
+        let reserved2 = u128::from_le_bytes([
+            fixed[48], fixed[49], fixed[50], fixed[51], fixed[52], fixed[53], fixed[54], fixed[55], fixed[56],
+            fixed[57], fixed[58], fixed[59], fixed[60], fixed[61], fixed[62], fixed[63],
+        ]);
+        let reserved3 = u64::from_le_bytes([
+            fixed[64], fixed[65], fixed[66], fixed[67], fixed[68], fixed[69], fixed[70], fixed[71],
+        ]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -19096,37 +20059,70 @@ impl<'a> MgaQzssEph<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let fit_interval = u8::from_le_bytes(r.array("fit_interval")?);
-        let ura_index = u8::from_le_bytes(r.array("ura_index")?);
-        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
-        let tgd_raw = i8::from_le_bytes(r.array("tgd")?);
-        let iodc = u16::from_le_bytes(r.array("iodc")?);
-        let toc = u16::from_le_bytes(r.array("toc")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let af2_raw = i8::from_le_bytes(r.array("af2")?);
-        let af1_raw = i16::from_le_bytes(r.array("af1")?);
-        let af0_raw = i32::from_le_bytes(r.array("af0")?);
-        let crs_raw = i16::from_le_bytes(r.array("crs")?);
-        let delta_n_raw = i16::from_le_bytes(r.array("delta_n")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let cuc_raw = i16::from_le_bytes(r.array("cuc")?);
-        let cus_raw = i16::from_le_bytes(r.array("cus")?);
-        let e_raw = u32::from_le_bytes(r.array("e")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let toe = u16::from_le_bytes(r.array("toe")?);
-        let cic_raw = i16::from_le_bytes(r.array("cic")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let cis_raw = i16::from_le_bytes(r.array("cis")?);
-        let crc_raw = i16::from_le_bytes(r.array("crc")?);
-        let i0_raw = i32::from_le_bytes(r.array("i0")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
-        let idot_raw = i16::from_le_bytes(r.array("idot")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 68] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("fit_interval", 1),
+            ("ura_index", 1),
+            ("sv_health", 1),
+            ("tgd", 1),
+            ("iodc", 2),
+            ("toc", 2),
+            ("reserved1", 1),
+            ("af2", 1),
+            ("af1", 2),
+            ("af0", 4),
+            ("crs", 2),
+            ("delta_n", 2),
+            ("m0", 4),
+            ("cuc", 2),
+            ("cus", 2),
+            ("e", 4),
+            ("sqrt_a", 4),
+            ("toe", 2),
+            ("cic", 2),
+            ("omega0", 4),
+            ("cis", 2),
+            ("crc", 2),
+            ("i0", 4),
+            ("omega", 4),
+            ("omega_dot", 4),
+            ("idot", 2),
+            ("reserved2", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let fit_interval = fixed[4];
+        let ura_index = fixed[5];
+        let sv_health = fixed[6];
+        let tgd_raw = i8::from_le_bytes([fixed[7]]);
+        let iodc = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let toc = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let reserved1 = fixed[12];
+        let af2_raw = i8::from_le_bytes([fixed[13]]);
+        let af1_raw = i16::from_le_bytes([fixed[14], fixed[15]]);
+        let af0_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let crs_raw = i16::from_le_bytes([fixed[20], fixed[21]]);
+        let delta_n_raw = i16::from_le_bytes([fixed[22], fixed[23]]);
+        let m0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let cuc_raw = i16::from_le_bytes([fixed[28], fixed[29]]);
+        let cus_raw = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let e_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let toe = u16::from_le_bytes([fixed[40], fixed[41]]);
+        let cic_raw = i16::from_le_bytes([fixed[42], fixed[43]]);
+        let omega0_raw = i32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let cis_raw = i16::from_le_bytes([fixed[48], fixed[49]]);
+        let crc_raw = i16::from_le_bytes([fixed[50], fixed[51]]);
+        let i0_raw = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let omega_raw = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let omega_dot_raw = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let idot_raw = i16::from_le_bytes([fixed[64], fixed[65]]);
+        let reserved2 = u16::from_le_bytes([fixed[66], fixed[67]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -19369,22 +20365,40 @@ impl<'a> MgaQzssAlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
-        let e_raw = u16::from_le_bytes(r.array("e")?);
-        let alm_w_na = u8::from_le_bytes(r.array("alm_w_na")?);
-        let toa = u8::from_le_bytes(r.array("toa")?);
-        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
-        let omega_dot_raw = i16::from_le_bytes(r.array("omega_dot")?);
-        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
-        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
-        let omega_raw = i32::from_le_bytes(r.array("omega")?);
-        let m0_raw = i32::from_le_bytes(r.array("m0")?);
-        let af0_raw = i16::from_le_bytes(r.array("af0")?);
-        let af1_raw = i16::from_le_bytes(r.array("af1")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("sv_id", 1),
+            ("sv_health", 1),
+            ("e", 2),
+            ("alm_w_na", 1),
+            ("toa", 1),
+            ("delta_i", 2),
+            ("omega_dot", 2),
+            ("sqrt_a", 4),
+            ("omega0", 4),
+            ("omega", 4),
+            ("m0", 4),
+            ("af0", 2),
+            ("af1", 2),
+            ("reserved0", 4),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let sv_id = fixed[2];
+        let sv_health = fixed[3];
+        let e_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let alm_w_na = fixed[6];
+        let toa = fixed[7];
+        let delta_i_raw = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let omega_dot_raw = i16::from_le_bytes([fixed[10], fixed[11]]);
+        let sqrt_a_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let omega0_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let omega_raw = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let m0_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let af0_raw = i16::from_le_bytes([fixed[28], fixed[29]]);
+        let af1_raw = i16::from_le_bytes([fixed[30], fixed[31]]);
+        let reserved0 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             r#type,
@@ -19529,9 +20543,10 @@ impl<'a> MgaQzssHealth<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("type", 1), ("version", 1), ("reserved0", 2)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let health_code = r.group(Some(5), 0, 65535, 3, "health_code")?;
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
@@ -19660,10 +20675,12 @@ impl<'a> MonBatch<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let fill_level = u16::from_le_bytes(r.array("fill_level")?);
-        let drops_all = u16::from_le_bytes(r.array("drops_all")?);
-        let drops_since_mon = u16::from_le_bytes(r.array("drops_since_mon")?);
-        let next_msg_cnt = u16::from_le_bytes(r.array("next_msg_cnt")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("fill_level", 2), ("drops_all", 2), ("drops_since_mon", 2), ("next_msg_cnt", 2)])?;
+        let fill_level = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let drops_all = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let drops_since_mon = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let next_msg_cnt = u16::from_le_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, reserved1, fill_level, drops_all, drops_since_mon, next_msg_cnt, trailing })
     }
@@ -19936,10 +20953,11 @@ impl<'a> MonComms<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let n_ports = u8::from_le_bytes(r.array("n_ports")?);
-        let tx_errors = u8::from_le_bytes(r.array("tx_errors")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("n_ports", 1), ("tx_errors", 1), ("reserved0", 1)])?;
+        let version = fixed[0];
+        let n_ports = fixed[1];
+        let tx_errors = fixed[2];
+        let reserved0 = fixed[3];
         let prot_ids = r.group(Some(4), 0, 65535, 0, "prot_ids")?;
         let ports = r.group(Some(usize::from(n_ports)), 0, 16, 0, "ports")?;
         let trailing = r.rest();
@@ -20156,11 +21174,13 @@ impl<'a> MonGnss<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let supported = u8::from_le_bytes(r.array("supported")?);
-        let default_gnss = u8::from_le_bytes(r.array("default_gnss")?);
-        let enabled = u8::from_le_bytes(r.array("enabled")?);
-        let simultaneous = u8::from_le_bytes(r.array("simultaneous")?);
+        let fixed: &[u8; 5] =
+            r.run(&[("version", 1), ("supported", 1), ("default_gnss", 1), ("enabled", 1), ("simultaneous", 1)])?;
+        let version = fixed[0];
+        let supported = fixed[1];
+        let default_gnss = fixed[2];
+        let enabled = fixed[3];
+        let simultaneous = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
@@ -20373,23 +21393,38 @@ impl<'a> MonHw<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let pin_sel = u32::from_le_bytes(r.array("pin_sel")?);
-        let pin_bank = u32::from_le_bytes(r.array("pin_bank")?);
-        let pin_dir = u32::from_le_bytes(r.array("pin_dir")?);
-        let pin_val = u32::from_le_bytes(r.array("pin_val")?);
-        let noise_per_ms = u16::from_le_bytes(r.array("noise_per_ms")?);
-        let agc_cnt = u16::from_le_bytes(r.array("agc_cnt")?);
-        let a_status = u8::from_le_bytes(r.array("a_status")?);
-        let a_power = u8::from_le_bytes(r.array("a_power")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let used_mask = u32::from_le_bytes(r.array("used_mask")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("pin_sel", 4),
+            ("pin_bank", 4),
+            ("pin_dir", 4),
+            ("pin_val", 4),
+            ("noise_per_ms", 2),
+            ("agc_cnt", 2),
+            ("a_status", 1),
+            ("a_power", 1),
+            ("flags", 1),
+            ("reserved1", 1),
+            ("used_mask", 4),
+        ])?;
+        let pin_sel = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pin_bank = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let pin_dir = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let pin_val = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let noise_per_ms = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let agc_cnt = u16::from_le_bytes([fixed[18], fixed[19]]);
+        let a_status = fixed[20];
+        let a_power = fixed[21];
+        let flags = fixed[22];
+        let reserved1 = fixed[23];
+        let used_mask = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let vp = r.group(Some(17), 0, 65535, 15, "vp")?;
-        let jam_ind = u8::from_le_bytes(r.array("jam_ind")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
-        let pin_irq = u32::from_le_bytes(r.array("pin_irq")?);
-        let pull_h = u32::from_le_bytes(r.array("pull_h")?);
-        let pull_l = u32::from_le_bytes(r.array("pull_l")?);
+        let fixed: &[u8; 15] =
+            r.run(&[("jam_ind", 1), ("reserved2", 2), ("pin_irq", 4), ("pull_h", 4), ("pull_l", 4)])?;
+        let jam_ind = fixed[0];
+        let reserved2 = u16::from_le_bytes([fixed[1], fixed[2]]);
+        let pin_irq = u32::from_le_bytes([fixed[3], fixed[4], fixed[5], fixed[6]]);
+        let pull_h = u32::from_le_bytes([fixed[7], fixed[8], fixed[9], fixed[10]]);
+        let pull_l = u32::from_le_bytes([fixed[11], fixed[12], fixed[13], fixed[14]]);
         let trailing = r.rest();
         Ok(Self {
             pin_sel,
@@ -20559,21 +21594,24 @@ impl<'a> MonHw2<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let ofs_i = i8::from_le_bytes(r.array("ofs_i")?);
-        let mag_i = u8::from_le_bytes(r.array("mag_i")?);
-        let ofs_q = i8::from_le_bytes(r.array("ofs_q")?);
-        let mag_q = u8::from_le_bytes(r.array("mag_q")?);
-        let cfg_source = u8::from_le_bytes(r.array("cfg_source")?);
+        let fixed: &[u8; 5] = r.run(&[("ofs_i", 1), ("mag_i", 1), ("ofs_q", 1), ("mag_q", 1), ("cfg_source", 1)])?;
+        let ofs_i = i8::from_le_bytes([fixed[0]]);
+        let mag_i = fixed[1];
+        let ofs_q = i8::from_le_bytes([fixed[2]]);
+        let mag_q = fixed[3];
+        let cfg_source = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let low_lev_cfg = u32::from_le_bytes(r.array("low_lev_cfg")?);
-        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
-        let post_status = u32::from_le_bytes(r.array("post_status")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 20] = r.run(&[("low_lev_cfg", 4), ("reserved1", 8), ("post_status", 4), ("reserved2", 4)])?;
+        let low_lev_cfg = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let reserved1 =
+            u64::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7], fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let post_status = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let reserved2 = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self {
             ofs_i,
@@ -20848,10 +21886,11 @@ impl<'a> MonHw3<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let n_pins = u8::from_le_bytes(r.array("n_pins")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let hw_version = r.bytes(10, "hw_version")?;
+        let fixed: &[u8; 13] = r.run(&[("version", 1), ("n_pins", 1), ("flags", 1), ("hw_version", 10)])?;
+        let version = fixed[0];
+        let n_pins = fixed[1];
+        let flags = fixed[2];
+        let hw_version = &fixed[3..13];
         let reserved0 = {
             let b: [u8; 9] = r.array("reserved0")?;
             let mut le = [0u8; 16];
@@ -21498,8 +22537,9 @@ impl<'a> MonPatch<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u16::from_le_bytes(r.array("version")?);
-        let n_entries = u16::from_le_bytes(r.array("n_entries")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 2), ("n_entries", 2)])?;
+        let version = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let n_entries = u16::from_le_bytes([fixed[2], fixed[3]]);
         let entries = r.group(Some(usize::from(n_entries)), 0, 32, 0, "entries")?;
         let trailing = r.rest();
         Ok(Self { version, n_entries, entries, trailing })
@@ -21683,9 +22723,10 @@ impl<'a> MonPmp<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let n_entries = u8::from_le_bytes(r.array("n_entries")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("n_entries", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let n_entries = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let entries = r.group(Some(usize::from(n_entries)), 0, 65535, 0, "entries")?;
         let trailing = r.rest();
         Ok(Self { version, n_entries, reserved0, entries, trailing })
@@ -21795,19 +22836,34 @@ pub struct MonRfBlock {
 impl<'a> ubx::Entry<'a> for MonRfBlock {
     const WIDTH: usize = 24;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let block_id = u8::from_le_bytes(r.array("block_id")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let ant_status = u8::from_le_bytes(r.array("ant_status")?);
-        let ant_power = u8::from_le_bytes(r.array("ant_power")?);
-        let post_status = u32::from_le_bytes(r.array("post_status")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let noise_per_ms = u16::from_le_bytes(r.array("noise_per_ms")?);
-        let agc_cnt = u16::from_le_bytes(r.array("agc_cnt")?);
-        let jam_ind = u8::from_le_bytes(r.array("jam_ind")?);
-        let ofs_i = i8::from_le_bytes(r.array("ofs_i")?);
-        let mag_i = u8::from_le_bytes(r.array("mag_i")?);
-        let ofs_q = i8::from_le_bytes(r.array("ofs_q")?);
-        let mag_q = u8::from_le_bytes(r.array("mag_q")?);
+        let fixed: &[u8; 21] = r.run(&[
+            ("block_id", 1),
+            ("flags", 1),
+            ("ant_status", 1),
+            ("ant_power", 1),
+            ("post_status", 4),
+            ("reserved1", 4),
+            ("noise_per_ms", 2),
+            ("agc_cnt", 2),
+            ("jam_ind", 1),
+            ("ofs_i", 1),
+            ("mag_i", 1),
+            ("ofs_q", 1),
+            ("mag_q", 1),
+        ])?;
+        let block_id = fixed[0];
+        let flags = fixed[1];
+        let ant_status = fixed[2];
+        let ant_power = fixed[3];
+        let post_status = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let reserved1 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let noise_per_ms = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let agc_cnt = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let jam_ind = fixed[16];
+        let ofs_i = i8::from_le_bytes([fixed[17]]);
+        let mag_i = fixed[18];
+        let ofs_q = i8::from_le_bytes([fixed[19]]);
+        let mag_q = fixed[20];
         let reserved2 = {
             let b: [u8; 3] = r.array("reserved2")?;
             let mut le = [0u8; 4];
@@ -21915,9 +22971,10 @@ impl<'a> MonRf<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let n_blocks = u8::from_le_bytes(r.array("n_blocks")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("n_blocks", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let n_blocks = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let blocks = r.group(Some(usize::from(n_blocks)), 0, 65535, 0, "blocks")?;
         let trailing = r.rest();
         Ok(Self { version, n_blocks, reserved0, blocks, trailing })
@@ -22387,13 +23444,22 @@ impl<'a> MonSmgr<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let int_osc = u16::from_le_bytes(r.array("int_osc")?);
-        let ext_osc = u16::from_le_bytes(r.array("ext_osc")?);
-        let disc_src = u8::from_le_bytes(r.array("disc_src")?);
-        let gnss = u8::from_le_bytes(r.array("gnss")?);
-        let ext_int0 = u8::from_le_bytes(r.array("ext_int0")?);
-        let ext_int1 = u8::from_le_bytes(r.array("ext_int1")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("itow", 4),
+            ("int_osc", 2),
+            ("ext_osc", 2),
+            ("disc_src", 1),
+            ("gnss", 1),
+            ("ext_int0", 1),
+            ("ext_int1", 1),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let int_osc = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let ext_osc = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let disc_src = fixed[8];
+        let gnss = fixed[9];
+        let ext_int0 = fixed[10];
+        let ext_int1 = fixed[11];
         let trailing = r.rest();
         Ok(Self { version, reserved1, itow, int_osc, ext_osc, disc_src, gnss, ext_int0, ext_int1, trailing })
     }
@@ -22511,12 +23577,14 @@ pub struct MonSpanRfBlock<'a> {
 impl<'a> ubx::Entry<'a> for MonSpanRfBlock<'a> {
     const WIDTH: usize = 272;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let spectrum0 = r.bytes(128, "spectrum0")?;
-        let spectrum1 = r.bytes(128, "spectrum1")?;
-        let span = u32::from_le_bytes(r.array("span")?);
-        let res = u32::from_le_bytes(r.array("res")?);
-        let center = u32::from_le_bytes(r.array("center")?);
-        let pga = u8::from_le_bytes(r.array("pga")?);
+        let fixed: &[u8; 269] =
+            r.run(&[("spectrum0", 128), ("spectrum1", 128), ("span", 4), ("res", 4), ("center", 4), ("pga", 1)])?;
+        let spectrum0 = &fixed[0..128];
+        let spectrum1 = &fixed[128..256];
+        let span = u32::from_le_bytes([fixed[256], fixed[257], fixed[258], fixed[259]]);
+        let res = u32::from_le_bytes([fixed[260], fixed[261], fixed[262], fixed[263]]);
+        let center = u32::from_le_bytes([fixed[264], fixed[265], fixed[266], fixed[267]]);
+        let pga = fixed[268];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
@@ -22583,9 +23651,10 @@ impl<'a> MonSpan<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_rf_blocks = u8::from_le_bytes(r.array("num_rf_blocks")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("num_rf_blocks", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let num_rf_blocks = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let rf_blocks = r.group(Some(usize::from(num_rf_blocks)), 0, 4, 0, "rf_blocks")?;
         let trailing = r.rest();
         Ok(Self { version, num_rf_blocks, reserved0, rf_blocks, trailing })
@@ -22803,10 +23872,11 @@ impl<'a> MonSpt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_sensor = u8::from_le_bytes(r.array("num_sensor")?);
-        let num_res = u8::from_le_bytes(r.array("num_res")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("num_sensor", 1), ("num_res", 1), ("reserved1", 1)])?;
+        let version = fixed[0];
+        let num_sensor = fixed[1];
+        let num_res = fixed[2];
+        let reserved1 = fixed[3];
         let sensors = r.group(Some(usize::from(num_sensor)), 0, 65535, 0, "sensors")?;
         let results = r.group(Some(usize::from(num_res)), 0, 65535, 0, "results")?;
         let trailing = r.rest();
@@ -22941,19 +24011,34 @@ impl<'a> MonSys<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let msg_ver = u8::from_le_bytes(r.array("msg_ver")?);
-        let boot_type = u8::from_le_bytes(r.array("boot_type")?);
-        let cpu_load = u8::from_le_bytes(r.array("cpu_load")?);
-        let cpu_load_max = u8::from_le_bytes(r.array("cpu_load_max")?);
-        let mem_usage = u8::from_le_bytes(r.array("mem_usage")?);
-        let mem_usage_max = u8::from_le_bytes(r.array("mem_usage_max")?);
-        let io_usage = u8::from_le_bytes(r.array("io_usage")?);
-        let io_usage_max = u8::from_le_bytes(r.array("io_usage_max")?);
-        let run_time = u32::from_le_bytes(r.array("run_time")?);
-        let notice_count = u16::from_le_bytes(r.array("notice_count")?);
-        let warn_count = u16::from_le_bytes(r.array("warn_count")?);
-        let error_count = u16::from_le_bytes(r.array("error_count")?);
-        let temp_value = i8::from_le_bytes(r.array("temp_value")?);
+        let fixed: &[u8; 19] = r.run(&[
+            ("msg_ver", 1),
+            ("boot_type", 1),
+            ("cpu_load", 1),
+            ("cpu_load_max", 1),
+            ("mem_usage", 1),
+            ("mem_usage_max", 1),
+            ("io_usage", 1),
+            ("io_usage_max", 1),
+            ("run_time", 4),
+            ("notice_count", 2),
+            ("warn_count", 2),
+            ("error_count", 2),
+            ("temp_value", 1),
+        ])?;
+        let msg_ver = fixed[0];
+        let boot_type = fixed[1];
+        let cpu_load = fixed[2];
+        let cpu_load_max = fixed[3];
+        let mem_usage = fixed[4];
+        let mem_usage_max = fixed[5];
+        let io_usage = fixed[6];
+        let io_usage_max = fixed[7];
+        let run_time = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let notice_count = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let warn_count = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let error_count = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let temp_value = i8::from_le_bytes([fixed[18]]);
         let reserved0 = {
             let b: [u8; 5] = r.array("reserved0")?;
             let mut le = [0u8; 8];
@@ -23209,10 +24294,11 @@ impl<'a> MonTxbuf<'a> {
         let pending = r.group(Some(6), 0, 65535, 4, "pending")?;
         let usage = r.group(Some(6), 0, 65535, 4, "usage")?;
         let peak_usage = r.group(Some(6), 0, 65535, 4, "peak_usage")?;
-        let t_usage = u8::from_le_bytes(r.array("t_usage")?);
-        let t_peak_usage = u8::from_le_bytes(r.array("t_peak_usage")?);
-        let errors = u8::from_le_bytes(r.array("errors")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("t_usage", 1), ("t_peak_usage", 1), ("errors", 1), ("reserved1", 1)])?;
+        let t_usage = fixed[0];
+        let t_peak_usage = fixed[1];
+        let errors = fixed[2];
+        let reserved1 = fixed[3];
         let trailing = r.rest();
         Ok(Self { pending, usage, peak_usage, t_usage, t_peak_usage, errors, reserved1, trailing })
     }
@@ -23351,8 +24437,9 @@ impl<'a> MonVer<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let sw_version = r.bytes(30, "sw_version")?;
-        let hw_version = r.bytes(10, "hw_version")?;
+        let fixed: &[u8; 40] = r.run(&[("sw_version", 30), ("hw_version", 10)])?;
+        let sw_version = &fixed[0..30];
+        let hw_version = &fixed[30..40];
         let extensions = r.group(None, 0, 100, 0, "extensions")?;
         let trailing = r.rest();
         Ok(Self { sw_version, hw_version, extensions, trailing })
@@ -23462,11 +24549,12 @@ impl<'a> Nav2Clock<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let clk_b = i32::from_le_bytes(r.array("clk_b")?);
-        let clk_d = i32::from_le_bytes(r.array("clk_d")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let f_acc = u32::from_le_bytes(r.array("f_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("clk_b", 4), ("clk_d", 4), ("t_acc", 4), ("f_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let clk_b = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let clk_d = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let f_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, clk_b, clk_d, t_acc, f_acc, trailing })
     }
@@ -23603,28 +24691,43 @@ impl<'a> Nav2Cov<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let pos_cov_valid = u8::from_le_bytes(r.array("pos_cov_valid")?);
-        let vel_cov_valid = u8::from_le_bytes(r.array("vel_cov_valid")?);
+        let fixed: &[u8; 7] = r.run(&[("itow", 4), ("version", 1), ("pos_cov_valid", 1), ("vel_cov_valid", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let pos_cov_valid = fixed[5];
+        let vel_cov_valid = fixed[6];
         let reserved1 = {
             let b: [u8; 9] = r.array("reserved1")?;
             let mut le = [0u8; 16];
             le[..9].copy_from_slice(&b);
             u128::from_le_bytes(le)
         };
-        let pos_cov_nn = f32::from_le_bytes(r.array("pos_cov_nn")?);
-        let pos_cov_ne = f32::from_le_bytes(r.array("pos_cov_ne")?);
-        let pos_cov_nd = f32::from_le_bytes(r.array("pos_cov_nd")?);
-        let pos_cov_ee = f32::from_le_bytes(r.array("pos_cov_ee")?);
-        let pos_cov_ed = f32::from_le_bytes(r.array("pos_cov_ed")?);
-        let pos_cov_dd = f32::from_le_bytes(r.array("pos_cov_dd")?);
-        let vel_cov_nn = f32::from_le_bytes(r.array("vel_cov_nn")?);
-        let vel_cov_ne = f32::from_le_bytes(r.array("vel_cov_ne")?);
-        let vel_cov_nd = f32::from_le_bytes(r.array("vel_cov_nd")?);
-        let vel_cov_ee = f32::from_le_bytes(r.array("vel_cov_ee")?);
-        let vel_cov_ed = f32::from_le_bytes(r.array("vel_cov_ed")?);
-        let vel_cov_dd = f32::from_le_bytes(r.array("vel_cov_dd")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("pos_cov_nn", 4),
+            ("pos_cov_ne", 4),
+            ("pos_cov_nd", 4),
+            ("pos_cov_ee", 4),
+            ("pos_cov_ed", 4),
+            ("pos_cov_dd", 4),
+            ("vel_cov_nn", 4),
+            ("vel_cov_ne", 4),
+            ("vel_cov_nd", 4),
+            ("vel_cov_ee", 4),
+            ("vel_cov_ed", 4),
+            ("vel_cov_dd", 4),
+        ])?;
+        let pos_cov_nn = f32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_cov_ne = f32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let pos_cov_nd = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let pos_cov_ee = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pos_cov_ed = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let pos_cov_dd = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let vel_cov_nn = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let vel_cov_ne = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let vel_cov_nd = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let vel_cov_ee = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let vel_cov_ed = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let vel_cov_dd = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -23821,14 +24924,24 @@ impl<'a> Nav2Dop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let g_dop_raw = u16::from_le_bytes(r.array("g_dop")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let t_dop_raw = u16::from_le_bytes(r.array("t_dop")?);
-        let v_dop_raw = u16::from_le_bytes(r.array("v_dop")?);
-        let h_dop_raw = u16::from_le_bytes(r.array("h_dop")?);
-        let n_dop_raw = u16::from_le_bytes(r.array("n_dop")?);
-        let e_dop_raw = u16::from_le_bytes(r.array("e_dop")?);
+        let fixed: &[u8; 18] = r.run(&[
+            ("itow", 4),
+            ("g_dop", 2),
+            ("p_dop", 2),
+            ("t_dop", 2),
+            ("v_dop", 2),
+            ("h_dop", 2),
+            ("n_dop", 2),
+            ("e_dop", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let g_dop_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let t_dop_raw = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let v_dop_raw = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let h_dop_raw = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let n_dop_raw = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let e_dop_raw = u16::from_le_bytes([fixed[16], fixed[17]]);
         let trailing = r.rest();
         Ok(Self { itow, g_dop_raw, p_dop_raw, t_dop_raw, v_dop_raw, h_dop_raw, n_dop_raw, e_dop_raw, trailing })
     }
@@ -24014,10 +25127,11 @@ impl<'a> Nav2Odo<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let distance = u32::from_le_bytes(r.array("distance")?);
-        let total_distance = u32::from_le_bytes(r.array("total_distance")?);
-        let distance_std = u32::from_le_bytes(r.array("distance_std")?);
+        let fixed: &[u8; 16] = r.run(&[("itow", 4), ("distance", 4), ("total_distance", 4), ("distance_std", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let distance = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let total_distance = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let distance_std = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { version, reserved1, itow, distance, total_distance, distance_std, trailing })
     }
@@ -24132,11 +25246,12 @@ impl<'a> Nav2Posecef<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
-        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
-        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
-        let p_acc = u32::from_le_bytes(r.array("p_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("ecef_x", 4), ("ecef_y", 4), ("ecef_z", 4), ("p_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_x = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let p_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, ecef_x, ecef_y, ecef_z, p_acc, trailing })
     }
@@ -24263,13 +25378,15 @@ impl<'a> Nav2Posllh<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
+        let fixed: &[u8; 28] =
+            r.run(&[("itow", 4), ("lon", 4), ("lat", 4), ("height", 4), ("h_msl", 4), ("h_acc", 4), ("v_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let lon_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let height = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let h_msl = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let h_acc = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let v_acc = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self { itow, lon_raw, lat_raw, height, h_msl, h_acc, v_acc, trailing })
     }
@@ -24600,39 +25717,74 @@ impl<'a> Nav2Pvt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
-        let head_mot_raw = i32::from_le_bytes(r.array("head_mot")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let head_acc_raw = u32::from_le_bytes(r.array("head_acc")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let flags3 = u16::from_le_bytes(r.array("flags3")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
-        let head_veh_raw = i32::from_le_bytes(r.array("head_veh")?);
-        let mag_dec_raw = i16::from_le_bytes(r.array("mag_dec")?);
-        let mag_acc_raw = u16::from_le_bytes(r.array("mag_acc")?);
+        let fixed: &[u8; 92] = r.run(&[
+            ("itow", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+            ("nano", 4),
+            ("fix_type", 1),
+            ("flags", 1),
+            ("flags2", 1),
+            ("num_sv", 1),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("g_speed", 4),
+            ("head_mot", 4),
+            ("s_acc", 4),
+            ("head_acc", 4),
+            ("p_dop", 2),
+            ("flags3", 2),
+            ("reserved0", 4),
+            ("head_veh", 4),
+            ("mag_dec", 2),
+            ("mag_acc", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let year = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let month = fixed[6];
+        let day = fixed[7];
+        let hour = fixed[8];
+        let min = fixed[9];
+        let sec = fixed[10];
+        let valid = fixed[11];
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let nano = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let fix_type_raw = fixed[20];
+        let flags = fixed[21];
+        let flags2 = fixed[22];
+        let num_sv = fixed[23];
+        let lon_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let lat_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let height = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let h_msl = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let h_acc = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let v_acc = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let vel_n = i32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_e = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let vel_d = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let g_speed = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let head_mot_raw = i32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let s_acc = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let head_acc_raw = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[76], fixed[77]]);
+        let flags3 = u16::from_le_bytes([fixed[78], fixed[79]]);
+        let reserved0 = u32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let head_veh_raw = i32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let mag_dec_raw = i16::from_le_bytes([fixed[88], fixed[89]]);
+        let mag_acc_raw = u16::from_le_bytes([fixed[90], fixed[91]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -25086,10 +26238,11 @@ impl<'a> Nav2Sat<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("version", 1), ("num_svs", 1), ("reserved0", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let num_svs = fixed[5];
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let svs = r.group(Some(usize::from(num_svs)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { itow, version, num_svs, reserved0, svs, trailing })
@@ -25323,14 +26476,24 @@ impl<'a> Nav2Sbas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let geo = u8::from_le_bytes(r.array("geo")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let sys = i8::from_le_bytes(r.array("sys")?);
-        let service = u8::from_le_bytes(r.array("service")?);
-        let cnt = u8::from_le_bytes(r.array("cnt")?);
-        let status_flags = u8::from_le_bytes(r.array("status_flags")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("itow", 4),
+            ("geo", 1),
+            ("mode", 1),
+            ("sys", 1),
+            ("service", 1),
+            ("cnt", 1),
+            ("status_flags", 1),
+            ("reserved1", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let geo = fixed[4];
+        let mode = fixed[5];
+        let sys = i8::from_le_bytes([fixed[6]]);
+        let service = fixed[7];
+        let cnt = fixed[8];
+        let status_flags = fixed[9];
+        let reserved1 = u16::from_le_bytes([fixed[10], fixed[11]]);
         let channels = r.group(Some(usize::from(cnt)), 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { itow, geo, mode, sys, service, cnt, status_flags, reserved1, channels, trailing })
@@ -25633,10 +26796,11 @@ impl<'a> Nav2Sig<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_sigs = u8::from_le_bytes(r.array("num_sigs")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("version", 1), ("num_sigs", 1), ("reserved0", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let num_sigs = fixed[5];
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let signals = r.group(Some(usize::from(num_sigs)), 0, 65535, 0, "signals")?;
         let trailing = r.rest();
         Ok(Self { itow, version, num_sigs, reserved0, signals, trailing })
@@ -25730,9 +26894,10 @@ pub struct Nav2SlasCorrection {
 impl<'a> ubx::Entry<'a> for Nav2SlasCorrection {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 3] = r.run(&[("gnss_id", 1), ("sv_id", 1), ("reserved1", 1)])?;
+        let gnss_id_raw = fixed[0];
+        let sv_id = fixed[1];
+        let reserved1 = fixed[2];
         let reserved2 = {
             let b: [u8; 3] = r.array("reserved2")?;
             let mut le = [0u8; 4];
@@ -25853,20 +27018,29 @@ impl<'a> Nav2Slas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let gms_lon_raw = i32::from_le_bytes(r.array("gms_lon")?);
-        let gms_lat_raw = i32::from_le_bytes(r.array("gms_lat")?);
-        let gms_code = u8::from_le_bytes(r.array("gms_code")?);
-        let qzss_sv_id = u8::from_le_bytes(r.array("qzss_sv_id")?);
-        let service_flags = u8::from_le_bytes(r.array("service_flags")?);
-        let cnt = u8::from_le_bytes(r.array("cnt")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("gms_lon", 4),
+            ("gms_lat", 4),
+            ("gms_code", 1),
+            ("qzss_sv_id", 1),
+            ("service_flags", 1),
+            ("cnt", 1),
+        ])?;
+        let gms_lon_raw = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gms_lat_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let gms_code = fixed[8];
+        let qzss_sv_id = fixed[9];
+        let service_flags = fixed[10];
+        let cnt = fixed[11];
         let corrections = r.group(Some(usize::from(cnt)), 0, 65535, 0, "corrections")?;
         let trailing = r.rest();
         Ok(Self {
@@ -26095,13 +27269,22 @@ impl<'a> Nav2Status<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let gps_fix_raw = u8::from_le_bytes(r.array("gps_fix")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let fix_stat = u8::from_le_bytes(r.array("fix_stat")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let ttff = u32::from_le_bytes(r.array("ttff")?);
-        let msss = u32::from_le_bytes(r.array("msss")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("gps_fix", 1),
+            ("flags", 1),
+            ("fix_stat", 1),
+            ("flags2", 1),
+            ("ttff", 4),
+            ("msss", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gps_fix_raw = fixed[4];
+        let flags = fixed[5];
+        let fix_stat = fixed[6];
+        let flags2 = fixed[7];
+        let ttff = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let msss = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, gps_fix_raw, flags, fix_stat, flags2, ttff, msss, trailing })
     }
@@ -26260,13 +27443,15 @@ impl<'a> Nav2Timebds<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let sow = u32::from_le_bytes(r.array("sow")?);
-        let f_sow = i32::from_le_bytes(r.array("f_sow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] =
+            r.run(&[("itow", 4), ("sow", 4), ("f_sow", 4), ("week", 2), ("leap_s", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let sow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_sow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let week = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, sow, f_sow, week, leap_s, valid, t_acc, trailing })
     }
@@ -26414,13 +27599,22 @@ impl<'a> Nav2Timegal<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let gal_tow = u32::from_le_bytes(r.array("gal_tow")?);
-        let f_gal_tow = i32::from_le_bytes(r.array("f_gal_tow")?);
-        let gal_wno = i16::from_le_bytes(r.array("gal_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("gal_tow", 4),
+            ("f_gal_tow", 4),
+            ("gal_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gal_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_gal_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let gal_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, gal_tow, f_gal_tow, gal_wno, leap_s, valid, t_acc, trailing })
     }
@@ -26560,13 +27754,15 @@ impl<'a> Nav2Timeglo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let tod = u32::from_le_bytes(r.array("tod")?);
-        let f_tod = i32::from_le_bytes(r.array("f_tod")?);
-        let nt = u16::from_le_bytes(r.array("nt")?);
-        let n4 = u8::from_le_bytes(r.array("n4")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] =
+            r.run(&[("itow", 4), ("tod", 4), ("f_tod", 4), ("nt", 2), ("n4", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let tod = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_tod = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let nt = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let n4 = fixed[14];
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, tod, f_tod, nt, n4, valid, t_acc, trailing })
     }
@@ -26711,12 +27907,14 @@ impl<'a> Nav2Timegps<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ftow = i32::from_le_bytes(r.array("ftow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 16] =
+            r.run(&[("itow", 4), ("ftow", 4), ("week", 2), ("leap_s", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ftow = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let week = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let leap_s = i8::from_le_bytes([fixed[10]]);
+        let valid = fixed[11];
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, ftow, week, leap_s, valid, t_acc, trailing })
     }
@@ -26864,21 +28062,31 @@ impl<'a> Nav2Timels<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let src_of_curr_ls = u8::from_le_bytes(r.array("src_of_curr_ls")?);
-        let curr_ls = i8::from_le_bytes(r.array("curr_ls")?);
-        let src_of_ls_change = u8::from_le_bytes(r.array("src_of_ls_change")?);
-        let ls_change = i8::from_le_bytes(r.array("ls_change")?);
-        let time_to_ls_event = i32::from_le_bytes(r.array("time_to_ls_event")?);
-        let date_of_ls_gps_wn = u16::from_le_bytes(r.array("date_of_ls_gps_wn")?);
-        let date_of_ls_gps_dn = u16::from_le_bytes(r.array("date_of_ls_gps_dn")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("src_of_curr_ls", 1),
+            ("curr_ls", 1),
+            ("src_of_ls_change", 1),
+            ("ls_change", 1),
+            ("time_to_ls_event", 4),
+            ("date_of_ls_gps_wn", 2),
+            ("date_of_ls_gps_dn", 2),
+        ])?;
+        let src_of_curr_ls = fixed[0];
+        let curr_ls = i8::from_le_bytes([fixed[1]]);
+        let src_of_ls_change = fixed[2];
+        let ls_change = i8::from_le_bytes([fixed[3]]);
+        let time_to_ls_event = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let date_of_ls_gps_wn = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let date_of_ls_gps_dn = u16::from_le_bytes([fixed[10], fixed[11]]);
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
@@ -27056,13 +28264,22 @@ impl<'a> Nav2Timenavic<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let nav_ic_tow = u32::from_le_bytes(r.array("nav_ic_tow")?);
-        let f_nav_ic_tow = i32::from_le_bytes(r.array("f_nav_ic_tow")?);
-        let nav_ic_wno = i16::from_le_bytes(r.array("nav_ic_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("nav_ic_tow", 4),
+            ("f_nav_ic_tow", 4),
+            ("nav_ic_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let nav_ic_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_nav_ic_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let nav_ic_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, nav_ic_tow, f_nav_ic_tow, nav_ic_wno, leap_s, valid, t_acc, trailing })
     }
@@ -27210,13 +28427,22 @@ impl<'a> Nav2Timeqzss<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let qzss_tow = u32::from_le_bytes(r.array("qzss_tow")?);
-        let f_qzss_tow = i32::from_le_bytes(r.array("f_qzss_tow")?);
-        let qzss_wno = i16::from_le_bytes(r.array("qzss_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("qzss_tow", 4),
+            ("f_qzss_tow", 4),
+            ("qzss_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let qzss_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_qzss_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let qzss_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, qzss_tow, f_qzss_tow, qzss_wno, leap_s, valid, t_acc, trailing })
     }
@@ -27378,16 +28604,28 @@ impl<'a> Nav2Timeutc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("t_acc", 4),
+            ("nano", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let t_acc = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let nano = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let year = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let month = fixed[14];
+        let day = fixed[15];
+        let hour = fixed[16];
+        let min = fixed[17];
+        let sec = fixed[18];
+        let valid = fixed[19];
         let trailing = r.rest();
         Ok(Self { itow, t_acc, nano, year, month, day, hour, min, sec, valid, trailing })
     }
@@ -27514,11 +28752,12 @@ impl<'a> Nav2Velecef<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ecef_vx = i32::from_le_bytes(r.array("ecef_vx")?);
-        let ecef_vy = i32::from_le_bytes(r.array("ecef_vy")?);
-        let ecef_vz = i32::from_le_bytes(r.array("ecef_vz")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("ecef_vx", 4), ("ecef_vy", 4), ("ecef_vz", 4), ("s_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_vx = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_vy = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_vz = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let s_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, ecef_vx, ecef_vy, ecef_vz, s_acc, trailing })
     }
@@ -27649,15 +28888,26 @@ impl<'a> Nav2Velned<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let speed = u32::from_le_bytes(r.array("speed")?);
-        let g_speed = u32::from_le_bytes(r.array("g_speed")?);
-        let heading_raw = i32::from_le_bytes(r.array("heading")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let c_acc_raw = u32::from_le_bytes(r.array("c_acc")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("itow", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("speed", 4),
+            ("g_speed", 4),
+            ("heading", 4),
+            ("s_acc", 4),
+            ("c_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let vel_n = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let vel_e = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let vel_d = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let speed = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let g_speed = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let heading_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let s_acc = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let c_acc_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self { itow, vel_n, vel_e, vel_d, speed, g_speed, heading_raw, s_acc, c_acc_raw, trailing })
     }
@@ -27786,9 +29036,10 @@ impl<'a> NavAopstatus<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let aop_cfg = u8::from_le_bytes(r.array("aop_cfg")?);
-        let status = u8::from_le_bytes(r.array("status")?);
+        let fixed: &[u8; 6] = r.run(&[("itow", 4), ("aop_cfg", 1), ("status", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let aop_cfg = fixed[4];
+        let status = fixed[5];
         let reserved1 = {
             let b: [u8; 10] = r.array("reserved1")?;
             let mut le = [0u8; 16];
@@ -27944,20 +29195,23 @@ impl<'a> NavAtt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let roll_raw = i32::from_le_bytes(r.array("roll")?);
-        let pitch_raw = i32::from_le_bytes(r.array("pitch")?);
-        let heading_raw = i32::from_le_bytes(r.array("heading")?);
-        let acc_roll_raw = u32::from_le_bytes(r.array("acc_roll")?);
-        let acc_pitch_raw = u32::from_le_bytes(r.array("acc_pitch")?);
-        let acc_heading_raw = u32::from_le_bytes(r.array("acc_heading")?);
+        let fixed: &[u8; 24] =
+            r.run(&[("roll", 4), ("pitch", 4), ("heading", 4), ("acc_roll", 4), ("acc_pitch", 4), ("acc_heading", 4)])?;
+        let roll_raw = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pitch_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let heading_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let acc_roll_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let acc_pitch_raw = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let acc_heading_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -28095,11 +29349,12 @@ impl<'a> NavClock<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let clk_b = i32::from_le_bytes(r.array("clk_b")?);
-        let clk_d = i32::from_le_bytes(r.array("clk_d")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let f_acc = u32::from_le_bytes(r.array("f_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("clk_b", 4), ("clk_d", 4), ("t_acc", 4), ("f_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let clk_b = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let clk_d = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let f_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, clk_b, clk_d, t_acc, f_acc, trailing })
     }
@@ -28236,28 +29491,43 @@ impl<'a> NavCov<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let pos_cov_valid = u8::from_le_bytes(r.array("pos_cov_valid")?);
-        let vel_cov_valid = u8::from_le_bytes(r.array("vel_cov_valid")?);
+        let fixed: &[u8; 7] = r.run(&[("itow", 4), ("version", 1), ("pos_cov_valid", 1), ("vel_cov_valid", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let pos_cov_valid = fixed[5];
+        let vel_cov_valid = fixed[6];
         let reserved1 = {
             let b: [u8; 9] = r.array("reserved1")?;
             let mut le = [0u8; 16];
             le[..9].copy_from_slice(&b);
             u128::from_le_bytes(le)
         };
-        let pos_cov_nn = f32::from_le_bytes(r.array("pos_cov_nn")?);
-        let pos_cov_ne = f32::from_le_bytes(r.array("pos_cov_ne")?);
-        let pos_cov_nd = f32::from_le_bytes(r.array("pos_cov_nd")?);
-        let pos_cov_ee = f32::from_le_bytes(r.array("pos_cov_ee")?);
-        let pos_cov_ed = f32::from_le_bytes(r.array("pos_cov_ed")?);
-        let pos_cov_dd = f32::from_le_bytes(r.array("pos_cov_dd")?);
-        let vel_cov_nn = f32::from_le_bytes(r.array("vel_cov_nn")?);
-        let vel_cov_ne = f32::from_le_bytes(r.array("vel_cov_ne")?);
-        let vel_cov_nd = f32::from_le_bytes(r.array("vel_cov_nd")?);
-        let vel_cov_ee = f32::from_le_bytes(r.array("vel_cov_ee")?);
-        let vel_cov_ed = f32::from_le_bytes(r.array("vel_cov_ed")?);
-        let vel_cov_dd = f32::from_le_bytes(r.array("vel_cov_dd")?);
+        let fixed: &[u8; 48] = r.run(&[
+            ("pos_cov_nn", 4),
+            ("pos_cov_ne", 4),
+            ("pos_cov_nd", 4),
+            ("pos_cov_ee", 4),
+            ("pos_cov_ed", 4),
+            ("pos_cov_dd", 4),
+            ("vel_cov_nn", 4),
+            ("vel_cov_ne", 4),
+            ("vel_cov_nd", 4),
+            ("vel_cov_ee", 4),
+            ("vel_cov_ed", 4),
+            ("vel_cov_dd", 4),
+        ])?;
+        let pos_cov_nn = f32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_cov_ne = f32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let pos_cov_nd = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let pos_cov_ee = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pos_cov_ed = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let pos_cov_dd = f32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let vel_cov_nn = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let vel_cov_ne = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let vel_cov_nd = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let vel_cov_ee = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let vel_cov_ed = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let vel_cov_dd = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -28484,13 +29754,22 @@ impl<'a> NavDgps<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let age = i32::from_le_bytes(r.array("age")?);
-        let base_id = i16::from_le_bytes(r.array("base_id")?);
-        let base_health = i16::from_le_bytes(r.array("base_health")?);
-        let num_ch = u8::from_le_bytes(r.array("num_ch")?);
-        let status = u8::from_le_bytes(r.array("status")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("age", 4),
+            ("base_id", 2),
+            ("base_health", 2),
+            ("num_ch", 1),
+            ("status", 1),
+            ("reserved1", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let age = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let base_id = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let base_health = i16::from_le_bytes([fixed[10], fixed[11]]);
+        let num_ch = fixed[12];
+        let status = fixed[13];
+        let reserved1 = u16::from_le_bytes([fixed[14], fixed[15]]);
         let channels = r.group(Some(usize::from(num_ch)), 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { itow, age, base_id, base_health, num_ch, status, reserved1, channels, trailing })
@@ -28651,14 +29930,24 @@ impl<'a> NavDop<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let g_dop_raw = u16::from_le_bytes(r.array("g_dop")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let t_dop_raw = u16::from_le_bytes(r.array("t_dop")?);
-        let v_dop_raw = u16::from_le_bytes(r.array("v_dop")?);
-        let h_dop_raw = u16::from_le_bytes(r.array("h_dop")?);
-        let n_dop_raw = u16::from_le_bytes(r.array("n_dop")?);
-        let e_dop_raw = u16::from_le_bytes(r.array("e_dop")?);
+        let fixed: &[u8; 18] = r.run(&[
+            ("itow", 4),
+            ("g_dop", 2),
+            ("p_dop", 2),
+            ("t_dop", 2),
+            ("v_dop", 2),
+            ("h_dop", 2),
+            ("n_dop", 2),
+            ("e_dop", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let g_dop_raw = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let t_dop_raw = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let v_dop_raw = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let h_dop_raw = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let n_dop_raw = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let e_dop_raw = u16::from_le_bytes([fixed[16], fixed[17]]);
         let trailing = r.rest();
         Ok(Self { itow, g_dop_raw, p_dop_raw, t_dop_raw, v_dop_raw, h_dop_raw, n_dop_raw, e_dop_raw, trailing })
     }
@@ -28791,12 +30080,20 @@ impl<'a> NavEell<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let err_ellipse_orient_raw = u16::from_le_bytes(r.array("err_ellipse_orient")?);
-        let err_ellipse_major = u32::from_le_bytes(r.array("err_ellipse_major")?);
-        let err_ellipse_minor = u32::from_le_bytes(r.array("err_ellipse_minor")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("version", 1),
+            ("reserved0", 1),
+            ("err_ellipse_orient", 2),
+            ("err_ellipse_major", 4),
+            ("err_ellipse_minor", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let reserved0 = fixed[5];
+        let err_ellipse_orient_raw = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let err_ellipse_major = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let err_ellipse_minor = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, version, reserved0, err_ellipse_orient_raw, err_ellipse_major, err_ellipse_minor, trailing })
     }
@@ -28994,11 +30291,13 @@ impl<'a> NavGeofence<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let status = u8::from_le_bytes(r.array("status")?);
-        let num_fences = u8::from_le_bytes(r.array("num_fences")?);
-        let comb_state = u8::from_le_bytes(r.array("comb_state")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("itow", 4), ("version", 1), ("status", 1), ("num_fences", 1), ("comb_state", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let status = fixed[5];
+        let num_fences = fixed[6];
+        let comb_state = fixed[7];
         let fences = r.group(Some(usize::from(num_fences)), 0, 65535, 0, "fences")?;
         let trailing = r.rest();
         Ok(Self { itow, version, status, num_fences, comb_state, fences, trailing })
@@ -29161,15 +30460,26 @@ impl<'a> NavHpposecef<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
-        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
-        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
-        let ecef_x_hp_raw = i8::from_le_bytes(r.array("ecef_x_hp")?);
-        let ecef_y_hp_raw = i8::from_le_bytes(r.array("ecef_y_hp")?);
-        let ecef_z_hp_raw = i8::from_le_bytes(r.array("ecef_z_hp")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let p_acc_raw = u32::from_le_bytes(r.array("p_acc")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("itow", 4),
+            ("ecef_x", 4),
+            ("ecef_y", 4),
+            ("ecef_z", 4),
+            ("ecef_x_hp", 1),
+            ("ecef_y_hp", 1),
+            ("ecef_z_hp", 1),
+            ("flags", 1),
+            ("p_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_x = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ecef_x_hp_raw = i8::from_le_bytes([fixed[16]]);
+        let ecef_y_hp_raw = i8::from_le_bytes([fixed[17]]);
+        let ecef_z_hp_raw = i8::from_le_bytes([fixed[18]]);
+        let flags = fixed[19];
+        let p_acc_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -29378,20 +30688,36 @@ impl<'a> NavHpposllh<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let lon_hp_raw = i8::from_le_bytes(r.array("lon_hp")?);
-        let lat_hp_raw = i8::from_le_bytes(r.array("lat_hp")?);
-        let height_hp_raw = i8::from_le_bytes(r.array("height_hp")?);
-        let h_msl_hp_raw = i8::from_le_bytes(r.array("h_msl_hp")?);
-        let h_acc_raw = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc_raw = u32::from_le_bytes(r.array("v_acc")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("version", 1),
+            ("reserved0", 2),
+            ("flags", 1),
+            ("itow", 4),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("lon_hp", 1),
+            ("lat_hp", 1),
+            ("height_hp", 1),
+            ("h_msl_hp", 1),
+            ("h_acc", 4),
+            ("v_acc", 4),
+        ])?;
+        let version = fixed[0];
+        let reserved0 = u16::from_le_bytes([fixed[1], fixed[2]]);
+        let flags = fixed[3];
+        let itow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lon_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let lat_raw = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let height = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let h_msl = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let lon_hp_raw = i8::from_le_bytes([fixed[24]]);
+        let lat_hp_raw = i8::from_le_bytes([fixed[25]]);
+        let height_hp_raw = i8::from_le_bytes([fixed[26]]);
+        let h_msl_hp_raw = i8::from_le_bytes([fixed[27]]);
+        let h_acc_raw = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let v_acc_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -29757,16 +31083,28 @@ impl<'a> NavNmi<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let gps_nmi_flags = u8::from_le_bytes(r.array("gps_nmi_flags")?);
-        let gps_ls_flags = u8::from_le_bytes(r.array("gps_ls_flags")?);
-        let gal_nmi_flags = u8::from_le_bytes(r.array("gal_nmi_flags")?);
-        let gal_ls_flags = u8::from_le_bytes(r.array("gal_ls_flags")?);
-        let bds_nmi_flags = u8::from_le_bytes(r.array("bds_nmi_flags")?);
-        let bds_ls_flags = u8::from_le_bytes(r.array("bds_ls_flags")?);
-        let glo_nmi_flags = u8::from_le_bytes(r.array("glo_nmi_flags")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("version", 1),
+            ("reserved1", 4),
+            ("gps_nmi_flags", 1),
+            ("gps_ls_flags", 1),
+            ("gal_nmi_flags", 1),
+            ("gal_ls_flags", 1),
+            ("bds_nmi_flags", 1),
+            ("bds_ls_flags", 1),
+            ("glo_nmi_flags", 1),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let reserved1 = u32::from_le_bytes([fixed[5], fixed[6], fixed[7], fixed[8]]);
+        let gps_nmi_flags = fixed[9];
+        let gps_ls_flags = fixed[10];
+        let gal_nmi_flags = fixed[11];
+        let gal_ls_flags = fixed[12];
+        let bds_nmi_flags = fixed[13];
+        let bds_ls_flags = fixed[14];
+        let glo_nmi_flags = fixed[15];
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -29935,10 +31273,11 @@ impl<'a> NavOdo<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let distance = u32::from_le_bytes(r.array("distance")?);
-        let total_distance = u32::from_le_bytes(r.array("total_distance")?);
-        let distance_std = u32::from_le_bytes(r.array("distance_std")?);
+        let fixed: &[u8; 16] = r.run(&[("itow", 4), ("distance", 4), ("total_distance", 4), ("distance_std", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let distance = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let total_distance = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let distance_std = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { version, reserved1, itow, distance, total_distance, distance_std, trailing })
     }
@@ -30185,10 +31524,11 @@ impl<'a> NavOrb<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("version", 1), ("num_sv", 1), ("reserved0", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let num_sv = fixed[5];
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { itow, version, num_sv, reserved0, svs, trailing })
@@ -30342,26 +31682,48 @@ impl<'a> NavPl<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let tmir_coeff = u8::from_le_bytes(r.array("tmir_coeff")?);
-        let tmir_exp = i8::from_le_bytes(r.array("tmir_exp")?);
-        let pl_pos_valid = u8::from_le_bytes(r.array("pl_pos_valid")?);
-        let pl_pos_frame = u8::from_le_bytes(r.array("pl_pos_frame")?);
-        let pl_vel_valid = u8::from_le_bytes(r.array("pl_vel_valid")?);
-        let pl_vel_frame = u8::from_le_bytes(r.array("pl_vel_frame")?);
-        let pl_time_valid = u8::from_le_bytes(r.array("pl_time_valid")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let pl_pos1 = u32::from_le_bytes(r.array("pl_pos1")?);
-        let pl_pos2 = u32::from_le_bytes(r.array("pl_pos2")?);
-        let pl_pos3 = u32::from_le_bytes(r.array("pl_pos3")?);
-        let pl_vel1 = u32::from_le_bytes(r.array("pl_vel1")?);
-        let pl_vel2 = u32::from_le_bytes(r.array("pl_vel2")?);
-        let pl_vel3 = u32::from_le_bytes(r.array("pl_vel3")?);
-        let pl_pos_horiz_orient_raw = u16::from_le_bytes(r.array("pl_pos_horiz_orient")?);
-        let pl_vel_horiz_orient_raw = u16::from_le_bytes(r.array("pl_vel_horiz_orient")?);
-        let pl_time = u32::from_le_bytes(r.array("pl_time")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 52] = r.run(&[
+            ("version", 1),
+            ("tmir_coeff", 1),
+            ("tmir_exp", 1),
+            ("pl_pos_valid", 1),
+            ("pl_pos_frame", 1),
+            ("pl_vel_valid", 1),
+            ("pl_vel_frame", 1),
+            ("pl_time_valid", 1),
+            ("reserved0", 4),
+            ("itow", 4),
+            ("pl_pos1", 4),
+            ("pl_pos2", 4),
+            ("pl_pos3", 4),
+            ("pl_vel1", 4),
+            ("pl_vel2", 4),
+            ("pl_vel3", 4),
+            ("pl_pos_horiz_orient", 2),
+            ("pl_vel_horiz_orient", 2),
+            ("pl_time", 4),
+            ("reserved1", 4),
+        ])?;
+        let version = fixed[0];
+        let tmir_coeff = fixed[1];
+        let tmir_exp = i8::from_le_bytes([fixed[2]]);
+        let pl_pos_valid = fixed[3];
+        let pl_pos_frame = fixed[4];
+        let pl_vel_valid = fixed[5];
+        let pl_vel_frame = fixed[6];
+        let pl_time_valid = fixed[7];
+        let reserved0 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let itow = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pl_pos1 = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let pl_pos2 = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let pl_pos3 = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let pl_vel1 = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let pl_vel2 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let pl_vel3 = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let pl_pos_horiz_orient_raw = u16::from_le_bytes([fixed[40], fixed[41]]);
+        let pl_vel_horiz_orient_raw = u16::from_le_bytes([fixed[42], fixed[43]]);
+        let pl_time = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let reserved1 = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -30528,11 +31890,12 @@ impl<'a> NavPosecef<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
-        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
-        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
-        let p_acc = u32::from_le_bytes(r.array("p_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("ecef_x", 4), ("ecef_y", 4), ("ecef_z", 4), ("p_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_x = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_y = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_z = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let p_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, ecef_x, ecef_y, ecef_z, p_acc, trailing })
     }
@@ -30659,13 +32022,15 @@ impl<'a> NavPosllh<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
+        let fixed: &[u8; 28] =
+            r.run(&[("itow", 4), ("lon", 4), ("lat", 4), ("height", 4), ("h_msl", 4), ("h_acc", 4), ("v_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let lon_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat_raw = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let height = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let h_msl = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let h_acc = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let v_acc = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self { itow, lon_raw, lat_raw, height, h_msl, h_acc, v_acc, trailing })
     }
@@ -31026,48 +32391,92 @@ impl<'a> NavPvat<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let veh_roll_raw = i32::from_le_bytes(r.array("veh_roll")?);
-        let veh_pitch_raw = i32::from_le_bytes(r.array("veh_pitch")?);
-        let veh_heading_raw = i32::from_le_bytes(r.array("veh_heading")?);
-        let mot_heading_raw = i32::from_le_bytes(r.array("mot_heading")?);
-        let acc_roll_raw = u16::from_le_bytes(r.array("acc_roll")?);
-        let acc_pitch_raw = u16::from_le_bytes(r.array("acc_pitch")?);
-        let acc_heading_raw = u16::from_le_bytes(r.array("acc_heading")?);
-        let mag_dec_raw = i16::from_le_bytes(r.array("mag_dec")?);
-        let mag_acc_raw = u16::from_le_bytes(r.array("mag_acc")?);
-        let err_ellipse_orient_raw = u16::from_le_bytes(r.array("err_ellipse_orient")?);
-        let err_ellipse_major = u32::from_le_bytes(r.array("err_ellipse_major")?);
-        let err_ellipse_minor = u32::from_le_bytes(r.array("err_ellipse_minor")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
-        let reserved3 = u32::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 116] = r.run(&[
+            ("itow", 4),
+            ("version", 1),
+            ("valid", 1),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("reserved0", 1),
+            ("reserved1", 2),
+            ("t_acc", 4),
+            ("nano", 4),
+            ("fix_type", 1),
+            ("flags", 1),
+            ("flags2", 1),
+            ("num_sv", 1),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("g_speed", 4),
+            ("s_acc", 4),
+            ("veh_roll", 4),
+            ("veh_pitch", 4),
+            ("veh_heading", 4),
+            ("mot_heading", 4),
+            ("acc_roll", 2),
+            ("acc_pitch", 2),
+            ("acc_heading", 2),
+            ("mag_dec", 2),
+            ("mag_acc", 2),
+            ("err_ellipse_orient", 2),
+            ("err_ellipse_major", 4),
+            ("err_ellipse_minor", 4),
+            ("reserved2", 4),
+            ("reserved3", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let valid = fixed[5];
+        let year = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let month = fixed[8];
+        let day = fixed[9];
+        let hour = fixed[10];
+        let min = fixed[11];
+        let sec = fixed[12];
+        let reserved0 = fixed[13];
+        let reserved1 = u16::from_le_bytes([fixed[14], fixed[15]]);
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let nano = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let fix_type_raw = fixed[24];
+        let flags = fixed[25];
+        let flags2 = fixed[26];
+        let num_sv = fixed[27];
+        let lon_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let lat_raw = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let height = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let h_msl = i32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let h_acc = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let v_acc = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_n = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let vel_e = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let vel_d = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let g_speed = i32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let s_acc = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let veh_roll_raw = i32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let veh_pitch_raw = i32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let veh_heading_raw = i32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let mot_heading_raw = i32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let acc_roll_raw = u16::from_le_bytes([fixed[88], fixed[89]]);
+        let acc_pitch_raw = u16::from_le_bytes([fixed[90], fixed[91]]);
+        let acc_heading_raw = u16::from_le_bytes([fixed[92], fixed[93]]);
+        let mag_dec_raw = i16::from_le_bytes([fixed[94], fixed[95]]);
+        let mag_acc_raw = u16::from_le_bytes([fixed[96], fixed[97]]);
+        let err_ellipse_orient_raw = u16::from_le_bytes([fixed[98], fixed[99]]);
+        let err_ellipse_major = u32::from_le_bytes([fixed[100], fixed[101], fixed[102], fixed[103]]);
+        let err_ellipse_minor = u32::from_le_bytes([fixed[104], fixed[105], fixed[106], fixed[107]]);
+        let reserved2 = u32::from_le_bytes([fixed[108], fixed[109], fixed[110], fixed[111]]);
+        let reserved3 = u32::from_le_bytes([fixed[112], fixed[113], fixed[114], fixed[115]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -31539,39 +32948,74 @@ impl<'a> NavPvt<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let height = i32::from_le_bytes(r.array("height")?);
-        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
-        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
-        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
-        let head_mot_raw = i32::from_le_bytes(r.array("head_mot")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let head_acc_raw = u32::from_le_bytes(r.array("head_acc")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let flags3 = u16::from_le_bytes(r.array("flags3")?);
-        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
-        let head_veh_raw = i32::from_le_bytes(r.array("head_veh")?);
-        let mag_dec_raw = i16::from_le_bytes(r.array("mag_dec")?);
-        let mag_acc_raw = u16::from_le_bytes(r.array("mag_acc")?);
+        let fixed: &[u8; 92] = r.run(&[
+            ("itow", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+            ("nano", 4),
+            ("fix_type", 1),
+            ("flags", 1),
+            ("flags2", 1),
+            ("num_sv", 1),
+            ("lon", 4),
+            ("lat", 4),
+            ("height", 4),
+            ("h_msl", 4),
+            ("h_acc", 4),
+            ("v_acc", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("g_speed", 4),
+            ("head_mot", 4),
+            ("s_acc", 4),
+            ("head_acc", 4),
+            ("p_dop", 2),
+            ("flags3", 2),
+            ("reserved0", 4),
+            ("head_veh", 4),
+            ("mag_dec", 2),
+            ("mag_acc", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let year = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let month = fixed[6];
+        let day = fixed[7];
+        let hour = fixed[8];
+        let min = fixed[9];
+        let sec = fixed[10];
+        let valid = fixed[11];
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let nano = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let fix_type_raw = fixed[20];
+        let flags = fixed[21];
+        let flags2 = fixed[22];
+        let num_sv = fixed[23];
+        let lon_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let lat_raw = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let height = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let h_msl = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let h_acc = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let v_acc = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let vel_n = i32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_e = i32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let vel_d = i32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let g_speed = i32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let head_mot_raw = i32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let s_acc = u32::from_le_bytes([fixed[68], fixed[69], fixed[70], fixed[71]]);
+        let head_acc_raw = u32::from_le_bytes([fixed[72], fixed[73], fixed[74], fixed[75]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[76], fixed[77]]);
+        let flags3 = u16::from_le_bytes([fixed[78], fixed[79]]);
+        let reserved0 = u32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let head_veh_raw = i32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let mag_dec_raw = i16::from_le_bytes([fixed[88], fixed[89]]);
+        let mag_acc_raw = u16::from_le_bytes([fixed[90], fixed[91]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -31960,27 +33404,50 @@ impl<'a> NavRelposned<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let ref_station_id = u16::from_le_bytes(r.array("ref_station_id")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let rel_pos_n = i32::from_le_bytes(r.array("rel_pos_n")?);
-        let rel_pos_e = i32::from_le_bytes(r.array("rel_pos_e")?);
-        let rel_pos_d = i32::from_le_bytes(r.array("rel_pos_d")?);
-        let rel_pos_length = i32::from_le_bytes(r.array("rel_pos_length")?);
-        let rel_pos_heading_raw = i32::from_le_bytes(r.array("rel_pos_heading")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let rel_pos_hpn_raw = i8::from_le_bytes(r.array("rel_pos_hpn")?);
-        let rel_pos_hpe_raw = i8::from_le_bytes(r.array("rel_pos_hpe")?);
-        let rel_pos_hpd_raw = i8::from_le_bytes(r.array("rel_pos_hpd")?);
-        let rel_pos_hp_length_raw = i8::from_le_bytes(r.array("rel_pos_hp_length")?);
-        let acc_n_raw = u32::from_le_bytes(r.array("acc_n")?);
-        let acc_e_raw = u32::from_le_bytes(r.array("acc_e")?);
-        let acc_d_raw = u32::from_le_bytes(r.array("acc_d")?);
-        let acc_length_raw = u32::from_le_bytes(r.array("acc_length")?);
-        let acc_heading_raw = u32::from_le_bytes(r.array("acc_heading")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 64] = r.run(&[
+            ("version", 1),
+            ("reserved0", 1),
+            ("ref_station_id", 2),
+            ("itow", 4),
+            ("rel_pos_n", 4),
+            ("rel_pos_e", 4),
+            ("rel_pos_d", 4),
+            ("rel_pos_length", 4),
+            ("rel_pos_heading", 4),
+            ("reserved1", 4),
+            ("rel_pos_hpn", 1),
+            ("rel_pos_hpe", 1),
+            ("rel_pos_hpd", 1),
+            ("rel_pos_hp_length", 1),
+            ("acc_n", 4),
+            ("acc_e", 4),
+            ("acc_d", 4),
+            ("acc_length", 4),
+            ("acc_heading", 4),
+            ("reserved2", 4),
+            ("flags", 4),
+        ])?;
+        let version = fixed[0];
+        let reserved0 = fixed[1];
+        let ref_station_id = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let itow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let rel_pos_n = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let rel_pos_e = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let rel_pos_d = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let rel_pos_length = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let rel_pos_heading_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let reserved1 = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let rel_pos_hpn_raw = i8::from_le_bytes([fixed[32]]);
+        let rel_pos_hpe_raw = i8::from_le_bytes([fixed[33]]);
+        let rel_pos_hpd_raw = i8::from_le_bytes([fixed[34]]);
+        let rel_pos_hp_length_raw = i8::from_le_bytes([fixed[35]]);
+        let acc_n_raw = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let acc_e_raw = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let acc_d_raw = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let acc_length_raw = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let acc_heading_raw = u32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
+        let reserved2 = u32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let flags = u32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -32232,21 +33699,38 @@ impl<'a> NavRelposnedV0<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let ref_station_id = u16::from_le_bytes(r.array("ref_station_id")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let rel_pos_n = i32::from_le_bytes(r.array("rel_pos_n")?);
-        let rel_pos_e = i32::from_le_bytes(r.array("rel_pos_e")?);
-        let rel_pos_d = i32::from_le_bytes(r.array("rel_pos_d")?);
-        let rel_pos_hpn_raw = i8::from_le_bytes(r.array("rel_pos_hpn")?);
-        let rel_pos_hpe_raw = i8::from_le_bytes(r.array("rel_pos_hpe")?);
-        let rel_pos_hpd_raw = i8::from_le_bytes(r.array("rel_pos_hpd")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let acc_n_raw = u32::from_le_bytes(r.array("acc_n")?);
-        let acc_e_raw = u32::from_le_bytes(r.array("acc_e")?);
-        let acc_d_raw = u32::from_le_bytes(r.array("acc_d")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 40] = r.run(&[
+            ("version", 1),
+            ("reserved1", 1),
+            ("ref_station_id", 2),
+            ("itow", 4),
+            ("rel_pos_n", 4),
+            ("rel_pos_e", 4),
+            ("rel_pos_d", 4),
+            ("rel_pos_hpn", 1),
+            ("rel_pos_hpe", 1),
+            ("rel_pos_hpd", 1),
+            ("reserved2", 1),
+            ("acc_n", 4),
+            ("acc_e", 4),
+            ("acc_d", 4),
+            ("flags", 4),
+        ])?;
+        let version = fixed[0];
+        let reserved1 = fixed[1];
+        let ref_station_id = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let itow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let rel_pos_n = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let rel_pos_e = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let rel_pos_d = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let rel_pos_hpn_raw = i8::from_le_bytes([fixed[20]]);
+        let rel_pos_hpe_raw = i8::from_le_bytes([fixed[21]]);
+        let rel_pos_hpd_raw = i8::from_le_bytes([fixed[22]]);
+        let reserved2 = fixed[23];
+        let acc_n_raw = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let acc_e_raw = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let acc_d_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let flags = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -32679,10 +34163,11 @@ impl<'a> NavSat<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("version", 1), ("num_svs", 1), ("reserved0", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let num_svs = fixed[5];
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let svs = r.group(Some(usize::from(num_svs)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { itow, version, num_svs, reserved0, svs, trailing })
@@ -32916,14 +34401,24 @@ impl<'a> NavSbas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let geo = u8::from_le_bytes(r.array("geo")?);
-        let mode = u8::from_le_bytes(r.array("mode")?);
-        let sys = i8::from_le_bytes(r.array("sys")?);
-        let service = u8::from_le_bytes(r.array("service")?);
-        let cnt = u8::from_le_bytes(r.array("cnt")?);
-        let status_flags = u8::from_le_bytes(r.array("status_flags")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("itow", 4),
+            ("geo", 1),
+            ("mode", 1),
+            ("sys", 1),
+            ("service", 1),
+            ("cnt", 1),
+            ("status_flags", 1),
+            ("reserved1", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let geo = fixed[4];
+        let mode = fixed[5];
+        let sys = i8::from_le_bytes([fixed[6]]);
+        let service = fixed[7];
+        let cnt = fixed[8];
+        let status_flags = fixed[9];
+        let reserved1 = u16::from_le_bytes([fixed[10], fixed[11]]);
         let channels = r.group(Some(usize::from(cnt)), 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { itow, geo, mode, sys, service, cnt, status_flags, reserved1, channels, trailing })
@@ -33226,10 +34721,11 @@ impl<'a> NavSig<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_sigs = u8::from_le_bytes(r.array("num_sigs")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("version", 1), ("num_sigs", 1), ("reserved0", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
+        let num_sigs = fixed[5];
+        let reserved0 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let signals = r.group(Some(usize::from(num_sigs)), 0, 65535, 0, "signals")?;
         let trailing = r.rest();
         Ok(Self { itow, version, num_sigs, reserved0, signals, trailing })
@@ -33323,9 +34819,10 @@ pub struct NavSlasCorrection {
 impl<'a> ubx::Entry<'a> for NavSlasCorrection {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 3] = r.run(&[("gnss_id", 1), ("sv_id", 1), ("reserved1", 1)])?;
+        let gnss_id_raw = fixed[0];
+        let sv_id = fixed[1];
+        let reserved1 = fixed[2];
         let reserved2 = {
             let b: [u8; 3] = r.array("reserved2")?;
             let mut le = [0u8; 4];
@@ -33446,20 +34943,29 @@ impl<'a> NavSlas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let gms_lon_raw = i32::from_le_bytes(r.array("gms_lon")?);
-        let gms_lat_raw = i32::from_le_bytes(r.array("gms_lat")?);
-        let gms_code = u8::from_le_bytes(r.array("gms_code")?);
-        let qzss_sv_id = u8::from_le_bytes(r.array("qzss_sv_id")?);
-        let service_flags = u8::from_le_bytes(r.array("service_flags")?);
-        let cnt = u8::from_le_bytes(r.array("cnt")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("gms_lon", 4),
+            ("gms_lat", 4),
+            ("gms_code", 1),
+            ("qzss_sv_id", 1),
+            ("service_flags", 1),
+            ("cnt", 1),
+        ])?;
+        let gms_lon_raw = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gms_lat_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let gms_code = fixed[8];
+        let qzss_sv_id = fixed[9];
+        let service_flags = fixed[10];
+        let cnt = fixed[11];
         let corrections = r.group(Some(usize::from(cnt)), 0, 65535, 0, "corrections")?;
         let trailing = r.rest();
         Ok(Self {
@@ -33665,23 +35171,42 @@ impl<'a> NavSol<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ftow = i32::from_le_bytes(r.array("ftow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let gps_fix_raw = u8::from_le_bytes(r.array("gps_fix")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
-        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
-        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
-        let p_acc = u32::from_le_bytes(r.array("p_acc")?);
-        let ecef_vx = i32::from_le_bytes(r.array("ecef_vx")?);
-        let ecef_vy = i32::from_le_bytes(r.array("ecef_vy")?);
-        let ecef_vz = i32::from_le_bytes(r.array("ecef_vz")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 52] = r.run(&[
+            ("itow", 4),
+            ("ftow", 4),
+            ("week", 2),
+            ("gps_fix", 1),
+            ("flags", 1),
+            ("ecef_x", 4),
+            ("ecef_y", 4),
+            ("ecef_z", 4),
+            ("p_acc", 4),
+            ("ecef_vx", 4),
+            ("ecef_vy", 4),
+            ("ecef_vz", 4),
+            ("s_acc", 4),
+            ("p_dop", 2),
+            ("reserved1", 1),
+            ("num_sv", 1),
+            ("reserved2", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ftow = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let week = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let gps_fix_raw = fixed[10];
+        let flags = fixed[11];
+        let ecef_x = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ecef_y = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let ecef_z = i32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let p_acc = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let ecef_vx = i32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let ecef_vy = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let ecef_vz = i32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let s_acc = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let p_dop_raw = u16::from_le_bytes([fixed[44], fixed[45]]);
+        let reserved1 = fixed[46];
+        let num_sv = fixed[47];
+        let reserved2 = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
         let trailing = r.rest();
         Ok(Self {
             itow,
@@ -33934,13 +35459,22 @@ impl<'a> NavStatus<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let gps_fix_raw = u8::from_le_bytes(r.array("gps_fix")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let fix_stat = u8::from_le_bytes(r.array("fix_stat")?);
-        let flags2 = u8::from_le_bytes(r.array("flags2")?);
-        let ttff = u32::from_le_bytes(r.array("ttff")?);
-        let msss = u32::from_le_bytes(r.array("msss")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("itow", 4),
+            ("gps_fix", 1),
+            ("flags", 1),
+            ("fix_stat", 1),
+            ("flags2", 1),
+            ("ttff", 4),
+            ("msss", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gps_fix_raw = fixed[4];
+        let flags = fixed[5];
+        let fix_stat = fixed[6];
+        let flags2 = fixed[7];
+        let ttff = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let msss = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, gps_fix_raw, flags, fix_stat, flags2, ttff, msss, trailing })
     }
@@ -34120,20 +35654,36 @@ impl<'a> NavSvin<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let dur = u32::from_le_bytes(r.array("dur")?);
-        let mean_x = i32::from_le_bytes(r.array("mean_x")?);
-        let mean_y = i32::from_le_bytes(r.array("mean_y")?);
-        let mean_z = i32::from_le_bytes(r.array("mean_z")?);
-        let mean_xhp_raw = i8::from_le_bytes(r.array("mean_xhp")?);
-        let mean_yhp_raw = i8::from_le_bytes(r.array("mean_yhp")?);
-        let mean_zhp_raw = i8::from_le_bytes(r.array("mean_zhp")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let mean_acc_raw = u32::from_le_bytes(r.array("mean_acc")?);
-        let obs = u32::from_le_bytes(r.array("obs")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let active = u8::from_le_bytes(r.array("active")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("itow", 4),
+            ("dur", 4),
+            ("mean_x", 4),
+            ("mean_y", 4),
+            ("mean_z", 4),
+            ("mean_xhp", 1),
+            ("mean_yhp", 1),
+            ("mean_zhp", 1),
+            ("reserved2", 1),
+            ("mean_acc", 4),
+            ("obs", 4),
+            ("valid", 1),
+            ("active", 1),
+            ("reserved3", 2),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let dur = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let mean_x = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let mean_y = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let mean_z = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let mean_xhp_raw = i8::from_le_bytes([fixed[20]]);
+        let mean_yhp_raw = i8::from_le_bytes([fixed[21]]);
+        let mean_zhp_raw = i8::from_le_bytes([fixed[22]]);
+        let reserved2 = fixed[23];
+        let mean_acc_raw = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let obs = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let valid = fixed[32];
+        let active = fixed[33];
+        let reserved3 = u16::from_le_bytes([fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -34441,10 +35991,11 @@ impl<'a> NavSvinfo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let num_ch = u8::from_le_bytes(r.array("num_ch")?);
-        let global_flags = u8::from_le_bytes(r.array("global_flags")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("num_ch", 1), ("global_flags", 1), ("reserved1", 2)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let num_ch = fixed[4];
+        let global_flags = fixed[5];
+        let reserved1 = u16::from_le_bytes([fixed[6], fixed[7]]);
         let channels = r.group(Some(usize::from(num_ch)), 0, 65535, 0, "channels")?;
         let trailing = r.rest();
         Ok(Self { itow, num_ch, global_flags, reserved1, channels, trailing })
@@ -34587,13 +36138,15 @@ impl<'a> NavTimebds<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let sow = u32::from_le_bytes(r.array("sow")?);
-        let f_sow = i32::from_le_bytes(r.array("f_sow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] =
+            r.run(&[("itow", 4), ("sow", 4), ("f_sow", 4), ("week", 2), ("leap_s", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let sow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_sow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let week = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, sow, f_sow, week, leap_s, valid, t_acc, trailing })
     }
@@ -34741,13 +36294,22 @@ impl<'a> NavTimegal<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let gal_tow = u32::from_le_bytes(r.array("gal_tow")?);
-        let f_gal_tow = i32::from_le_bytes(r.array("f_gal_tow")?);
-        let gal_wno = i16::from_le_bytes(r.array("gal_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("gal_tow", 4),
+            ("f_gal_tow", 4),
+            ("gal_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let gal_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_gal_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let gal_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, gal_tow, f_gal_tow, gal_wno, leap_s, valid, t_acc, trailing })
     }
@@ -34887,13 +36449,15 @@ impl<'a> NavTimeglo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let tod = u32::from_le_bytes(r.array("tod")?);
-        let f_tod = i32::from_le_bytes(r.array("f_tod")?);
-        let nt = u16::from_le_bytes(r.array("nt")?);
-        let n4 = u8::from_le_bytes(r.array("n4")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] =
+            r.run(&[("itow", 4), ("tod", 4), ("f_tod", 4), ("nt", 2), ("n4", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let tod = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_tod = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let nt = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let n4 = fixed[14];
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, tod, f_tod, nt, n4, valid, t_acc, trailing })
     }
@@ -35038,12 +36602,14 @@ impl<'a> NavTimegps<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ftow = i32::from_le_bytes(r.array("ftow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 16] =
+            r.run(&[("itow", 4), ("ftow", 4), ("week", 2), ("leap_s", 1), ("valid", 1), ("t_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ftow = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let week = i16::from_le_bytes([fixed[8], fixed[9]]);
+        let leap_s = i8::from_le_bytes([fixed[10]]);
+        let valid = fixed[11];
+        let t_acc = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
         let trailing = r.rest();
         Ok(Self { itow, ftow, week, leap_s, valid, t_acc, trailing })
     }
@@ -35191,21 +36757,31 @@ impl<'a> NavTimels<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let version = u8::from_le_bytes(r.array("version")?);
+        let fixed: &[u8; 5] = r.run(&[("itow", 4), ("version", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let version = fixed[4];
         let reserved0 = {
             let b: [u8; 3] = r.array("reserved0")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let src_of_curr_ls = u8::from_le_bytes(r.array("src_of_curr_ls")?);
-        let curr_ls = i8::from_le_bytes(r.array("curr_ls")?);
-        let src_of_ls_change = u8::from_le_bytes(r.array("src_of_ls_change")?);
-        let ls_change = i8::from_le_bytes(r.array("ls_change")?);
-        let time_to_ls_event = i32::from_le_bytes(r.array("time_to_ls_event")?);
-        let date_of_ls_gps_wn = u16::from_le_bytes(r.array("date_of_ls_gps_wn")?);
-        let date_of_ls_gps_dn = u16::from_le_bytes(r.array("date_of_ls_gps_dn")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("src_of_curr_ls", 1),
+            ("curr_ls", 1),
+            ("src_of_ls_change", 1),
+            ("ls_change", 1),
+            ("time_to_ls_event", 4),
+            ("date_of_ls_gps_wn", 2),
+            ("date_of_ls_gps_dn", 2),
+        ])?;
+        let src_of_curr_ls = fixed[0];
+        let curr_ls = i8::from_le_bytes([fixed[1]]);
+        let src_of_ls_change = fixed[2];
+        let ls_change = i8::from_le_bytes([fixed[3]]);
+        let time_to_ls_event = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let date_of_ls_gps_wn = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let date_of_ls_gps_dn = u16::from_le_bytes([fixed[10], fixed[11]]);
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
@@ -35383,13 +36959,22 @@ impl<'a> NavTimenavic<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let nav_ic_tow = u32::from_le_bytes(r.array("nav_ic_tow")?);
-        let f_nav_ic_tow = i32::from_le_bytes(r.array("f_nav_ic_tow")?);
-        let nav_ic_wno = i16::from_le_bytes(r.array("nav_ic_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("nav_ic_tow", 4),
+            ("f_nav_ic_tow", 4),
+            ("nav_ic_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let nav_ic_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_nav_ic_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let nav_ic_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, nav_ic_tow, f_nav_ic_tow, nav_ic_wno, leap_s, valid, t_acc, trailing })
     }
@@ -35537,13 +37122,22 @@ impl<'a> NavTimeqzss<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let qzss_tow = u32::from_le_bytes(r.array("qzss_tow")?);
-        let f_qzss_tow = i32::from_le_bytes(r.array("f_qzss_tow")?);
-        let qzss_wno = i16::from_le_bytes(r.array("qzss_wno")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("qzss_tow", 4),
+            ("f_qzss_tow", 4),
+            ("qzss_wno", 2),
+            ("leap_s", 1),
+            ("valid", 1),
+            ("t_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let qzss_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let f_qzss_tow = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let qzss_wno = i16::from_le_bytes([fixed[12], fixed[13]]);
+        let leap_s = i8::from_le_bytes([fixed[14]]);
+        let valid = fixed[15];
+        let t_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, qzss_tow, f_qzss_tow, qzss_wno, leap_s, valid, t_acc, trailing })
     }
@@ -35705,16 +37299,28 @@ impl<'a> NavTimeutc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
-        let nano = i32::from_le_bytes(r.array("nano")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let min = u8::from_le_bytes(r.array("min")?);
-        let sec = u8::from_le_bytes(r.array("sec")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("t_acc", 4),
+            ("nano", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("min", 1),
+            ("sec", 1),
+            ("valid", 1),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let t_acc = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let nano = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let year = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let month = fixed[14];
+        let day = fixed[15];
+        let hour = fixed[16];
+        let min = fixed[17];
+        let sec = fixed[18];
+        let valid = fixed[19];
         let trailing = r.rest();
         Ok(Self { itow, t_acc, nano, year, month, day, hour, min, sec, valid, trailing })
     }
@@ -35841,11 +37447,12 @@ impl<'a> NavVelecef<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let ecef_vx = i32::from_le_bytes(r.array("ecef_vx")?);
-        let ecef_vy = i32::from_le_bytes(r.array("ecef_vy")?);
-        let ecef_vz = i32::from_le_bytes(r.array("ecef_vz")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
+        let fixed: &[u8; 20] = r.run(&[("itow", 4), ("ecef_vx", 4), ("ecef_vy", 4), ("ecef_vz", 4), ("s_acc", 4)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let ecef_vx = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let ecef_vy = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let ecef_vz = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let s_acc = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
         let trailing = r.rest();
         Ok(Self { itow, ecef_vx, ecef_vy, ecef_vz, s_acc, trailing })
     }
@@ -35976,15 +37583,26 @@ impl<'a> NavVelned<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
-        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
-        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
-        let speed = u32::from_le_bytes(r.array("speed")?);
-        let g_speed = u32::from_le_bytes(r.array("g_speed")?);
-        let heading_raw = i32::from_le_bytes(r.array("heading")?);
-        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
-        let c_acc_raw = u32::from_le_bytes(r.array("c_acc")?);
+        let fixed: &[u8; 36] = r.run(&[
+            ("itow", 4),
+            ("vel_n", 4),
+            ("vel_e", 4),
+            ("vel_d", 4),
+            ("speed", 4),
+            ("g_speed", 4),
+            ("heading", 4),
+            ("s_acc", 4),
+            ("c_acc", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let vel_n = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let vel_e = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let vel_d = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let speed = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let g_speed = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let heading_raw = i32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let s_acc = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let c_acc_raw = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
         let trailing = r.rest();
         Ok(Self { itow, vel_n, vel_e, vel_d, speed, g_speed, heading_raw, s_acc, c_acc_raw, trailing })
     }
@@ -36140,12 +37758,20 @@ impl<'a> RxmCor<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let status_info = u32::from_le_bytes(r.array("status_info")?);
-        let msg_type = u16::from_le_bytes(r.array("msg_type")?);
-        let msg_sub_type = u16::from_le_bytes(r.array("msg_sub_type")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("version", 1),
+            ("ebno", 1),
+            ("reserved0", 2),
+            ("status_info", 4),
+            ("msg_type", 2),
+            ("msg_sub_type", 2),
+        ])?;
+        let version = fixed[0];
+        let ebno_raw = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let status_info = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let msg_type = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let msg_sub_type = u16::from_le_bytes([fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { version, ebno_raw, reserved0, status_info, msg_type, msg_sub_type, trailing })
     }
@@ -36268,25 +37894,39 @@ pub struct RxmImesTransmitter {
 impl<'a> ubx::Entry<'a> for RxmImesTransmitter {
     const WIDTH: usize = 44;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let tx_id = u8::from_le_bytes(r.array("tx_id")?);
+        let fixed: &[u8; 2] = r.run(&[("reserved2", 1), ("tx_id", 1)])?;
+        let reserved2 = fixed[0];
+        let tx_id = fixed[1];
         let reserved3 = {
             let b: [u8; 3] = r.array("reserved3")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
-        let doppler_raw = i32::from_le_bytes(r.array("doppler")?);
-        let position1_1 = u32::from_le_bytes(r.array("position1_1")?);
-        let position1_2 = u32::from_le_bytes(r.array("position1_2")?);
-        let position2_1 = u32::from_le_bytes(r.array("position2_1")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let short_id_frame = u32::from_le_bytes(r.array("short_id_frame")?);
-        let medium_id_lsb = u32::from_le_bytes(r.array("medium_id_lsb")?);
-        let medium_id_2 = u32::from_le_bytes(r.array("medium_id_2")?);
+        let fixed: &[u8; 39] = r.run(&[
+            ("cno", 1),
+            ("reserved4", 2),
+            ("doppler", 4),
+            ("position1_1", 4),
+            ("position1_2", 4),
+            ("position2_1", 4),
+            ("lat", 4),
+            ("lon", 4),
+            ("short_id_frame", 4),
+            ("medium_id_lsb", 4),
+            ("medium_id_2", 4),
+        ])?;
+        let cno = fixed[0];
+        let reserved4 = u16::from_le_bytes([fixed[1], fixed[2]]);
+        let doppler_raw = i32::from_le_bytes([fixed[3], fixed[4], fixed[5], fixed[6]]);
+        let position1_1 = u32::from_le_bytes([fixed[7], fixed[8], fixed[9], fixed[10]]);
+        let position1_2 = u32::from_le_bytes([fixed[11], fixed[12], fixed[13], fixed[14]]);
+        let position2_1 = u32::from_le_bytes([fixed[15], fixed[16], fixed[17], fixed[18]]);
+        let lat_raw = i32::from_le_bytes([fixed[19], fixed[20], fixed[21], fixed[22]]);
+        let lon_raw = i32::from_le_bytes([fixed[23], fixed[24], fixed[25], fixed[26]]);
+        let short_id_frame = u32::from_le_bytes([fixed[27], fixed[28], fixed[29], fixed[30]]);
+        let medium_id_lsb = u32::from_le_bytes([fixed[31], fixed[32], fixed[33], fixed[34]]);
+        let medium_id_2 = u32::from_le_bytes([fixed[35], fixed[36], fixed[37], fixed[38]]);
         Ok(Self {
             reserved2,
             tx_id,
@@ -36523,9 +38163,10 @@ impl<'a> RxmImes<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let num_tx = u8::from_le_bytes(r.array("num_tx")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 4] = r.run(&[("num_tx", 1), ("version", 1), ("reserved1", 2)])?;
+        let num_tx = fixed[0];
+        let version = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let transmitters = r.group(Some(usize::from(num_tx)), 0, 65535, 0, "transmitters")?;
         let trailing = r.rest();
         Ok(Self { num_tx, version, reserved1, transmitters, trailing })
@@ -36815,19 +38456,36 @@ impl<'a> RxmMeasx<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let gps_tow = u32::from_le_bytes(r.array("gps_tow")?);
-        let glo_tow = u32::from_le_bytes(r.array("glo_tow")?);
-        let bds_tow = u32::from_le_bytes(r.array("bds_tow")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let qzss_tow = u32::from_le_bytes(r.array("qzss_tow")?);
-        let gps_tow_acc_raw = u16::from_le_bytes(r.array("gps_tow_acc")?);
-        let glo_tow_acc_raw = u16::from_le_bytes(r.array("glo_tow_acc")?);
-        let bds_tow_acc_raw = u16::from_le_bytes(r.array("bds_tow_acc")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
-        let qzss_tow_acc_raw = u16::from_le_bytes(r.array("qzss_tow_acc")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved3 = u64::from_le_bytes(r.array("reserved3")?);
+        let fixed: &[u8; 40] = r.run(&[
+            ("gps_tow", 4),
+            ("glo_tow", 4),
+            ("bds_tow", 4),
+            ("reserved1", 4),
+            ("qzss_tow", 4),
+            ("gps_tow_acc", 2),
+            ("glo_tow_acc", 2),
+            ("bds_tow_acc", 2),
+            ("reserved2", 2),
+            ("qzss_tow_acc", 2),
+            ("num_sv", 1),
+            ("flags", 1),
+            ("reserved3", 8),
+        ])?;
+        let gps_tow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let glo_tow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let bds_tow = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let reserved1 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let qzss_tow = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let gps_tow_acc_raw = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let glo_tow_acc_raw = u16::from_le_bytes([fixed[22], fixed[23]]);
+        let bds_tow_acc_raw = u16::from_le_bytes([fixed[24], fixed[25]]);
+        let reserved2 = u16::from_le_bytes([fixed[26], fixed[27]]);
+        let qzss_tow_acc_raw = u16::from_le_bytes([fixed[28], fixed[29]]);
+        let num_sv = fixed[30];
+        let flags = fixed[31];
+        let reserved3 = u64::from_le_bytes([
+            fixed[32], fixed[33], fixed[34], fixed[35], fixed[36], fixed[37], fixed[38], fixed[39],
+        ]);
         let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self {
@@ -36973,17 +38631,30 @@ impl<'a> RxmPmp<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
-        let unique_word1 = u32::from_le_bytes(r.array("unique_word1")?);
-        let unique_word2 = u32::from_le_bytes(r.array("unique_word2")?);
-        let service_identifier = u16::from_le_bytes(r.array("service_identifier")?);
-        let spare = u8::from_le_bytes(r.array("spare")?);
-        let unique_word_bit_errors = u8::from_le_bytes(r.array("unique_word_bit_errors")?);
-        let user_data0 = r.bytes(252, "user_data0")?;
-        let user_data1 = r.bytes(252, "user_data1")?;
-        let fec_bits = u16::from_le_bytes(r.array("fec_bits")?);
-        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 524] = r.run(&[
+            ("time_tag", 4),
+            ("unique_word1", 4),
+            ("unique_word2", 4),
+            ("service_identifier", 2),
+            ("spare", 1),
+            ("unique_word_bit_errors", 1),
+            ("user_data0", 252),
+            ("user_data1", 252),
+            ("fec_bits", 2),
+            ("ebno", 1),
+            ("reserved1", 1),
+        ])?;
+        let time_tag = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let unique_word1 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let unique_word2 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let service_identifier = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let spare = fixed[14];
+        let unique_word_bit_errors = fixed[15];
+        let user_data0 = &fixed[16..268];
+        let user_data1 = &fixed[268..520];
+        let fec_bits = u16::from_le_bytes([fixed[520], fixed[521]]);
+        let ebno_raw = fixed[522];
+        let reserved1 = fixed[523];
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -37108,18 +38779,32 @@ impl<'a> RxmPmpV1<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let num_bytes_user_data = u16::from_le_bytes(r.array("num_bytes_user_data")?);
-        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
-        let unique_word1 = u32::from_le_bytes(r.array("unique_word1")?);
-        let unique_word2 = u32::from_le_bytes(r.array("unique_word2")?);
-        let service_identifier = u16::from_le_bytes(r.array("service_identifier")?);
-        let spare = u8::from_le_bytes(r.array("spare")?);
-        let unique_word_bit_errors = u8::from_le_bytes(r.array("unique_word_bit_errors")?);
-        let fec_bits = u16::from_le_bytes(r.array("fec_bits")?);
-        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 24] = r.run(&[
+            ("version", 1),
+            ("reserved0", 1),
+            ("num_bytes_user_data", 2),
+            ("time_tag", 4),
+            ("unique_word1", 4),
+            ("unique_word2", 4),
+            ("service_identifier", 2),
+            ("spare", 1),
+            ("unique_word_bit_errors", 1),
+            ("fec_bits", 2),
+            ("ebno", 1),
+            ("reserved1", 1),
+        ])?;
+        let version = fixed[0];
+        let reserved0 = fixed[1];
+        let num_bytes_user_data = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let time_tag = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let unique_word1 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let unique_word2 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let service_identifier = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let spare = fixed[18];
+        let unique_word_bit_errors = fixed[19];
+        let fec_bits = u16::from_le_bytes([fixed[20], fixed[21]]);
+        let ebno_raw = fixed[22];
+        let reserved1 = fixed[23];
         let user_data = r.left(0);
         let trailing = r.rest();
         Ok(Self {
@@ -37274,9 +38959,10 @@ impl<'a> RxmPmreq<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let duration = u32::from_le_bytes(r.array("duration")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
-        let wakeup_sources = u32::from_le_bytes(r.array("wakeup_sources")?);
+        let fixed: &[u8; 12] = r.run(&[("duration", 4), ("flags", 4), ("wakeup_sources", 4)])?;
+        let duration = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let flags = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let wakeup_sources = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { version, reserved0, duration, flags, wakeup_sources, trailing })
     }
@@ -37351,8 +39037,9 @@ impl<'a> RxmPmreqShort<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let duration = u32::from_le_bytes(r.array("duration")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let fixed: &[u8; 8] = r.run(&[("duration", 4), ("flags", 4)])?;
+        let duration = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let flags = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { duration, flags, trailing })
     }
@@ -37459,15 +39146,26 @@ impl<'a> RxmQzssl6<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let cno_raw = u16::from_le_bytes(r.array("cno")?);
-        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
-        let group_delay = u8::from_le_bytes(r.array("group_delay")?);
-        let bit_err_corr = u8::from_le_bytes(r.array("bit_err_corr")?);
-        let ch_info = u16::from_le_bytes(r.array("ch_info")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let msg_bytes = r.bytes(250, "msg_bytes")?;
+        let fixed: &[u8; 264] = r.run(&[
+            ("version", 1),
+            ("sv_id", 1),
+            ("cno", 2),
+            ("time_tag", 4),
+            ("group_delay", 1),
+            ("bit_err_corr", 1),
+            ("ch_info", 2),
+            ("reserved0", 2),
+            ("msg_bytes", 250),
+        ])?;
+        let version = fixed[0];
+        let sv_id = fixed[1];
+        let cno_raw = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let time_tag = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let group_delay = fixed[8];
+        let bit_err_corr = fixed[9];
+        let ch_info = u16::from_le_bytes([fixed[10], fixed[11]]);
+        let reserved0 = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let msg_bytes = &fixed[14..264];
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -37804,13 +39502,23 @@ impl<'a> RxmRawx<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let rcv_tow = f64::from_le_bytes(r.array("rcv_tow")?);
-        let week = u16::from_le_bytes(r.array("week")?);
-        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
-        let num_meas = u8::from_le_bytes(r.array("num_meas")?);
-        let rec_stat = u8::from_le_bytes(r.array("rec_stat")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("rcv_tow", 8),
+            ("week", 2),
+            ("leap_s", 1),
+            ("num_meas", 1),
+            ("rec_stat", 1),
+            ("version", 1),
+            ("reserved1", 2),
+        ])?;
+        let rcv_tow =
+            f64::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3], fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let week = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let leap_s = i8::from_le_bytes([fixed[10]]);
+        let num_meas = fixed[11];
+        let rec_stat = fixed[12];
+        let version = fixed[13];
+        let reserved1 = u16::from_le_bytes([fixed[14], fixed[15]]);
         let measurements = r.group(Some(usize::from(num_meas)), 0, 65535, 0, "measurements")?;
         let trailing = r.rest();
         Ok(Self { rcv_tow, week, leap_s, num_meas, rec_stat, version, reserved1, measurements, trailing })
@@ -37892,13 +39600,22 @@ impl<'a> RxmRlm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let beacon = r.bytes(8, "beacon")?;
-        let message = u8::from_le_bytes(r.array("message")?);
-        let params = r.bytes(12, "params")?;
+        let fixed: &[u8; 25] = r.run(&[
+            ("version", 1),
+            ("type", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("beacon", 8),
+            ("message", 1),
+            ("params", 12),
+        ])?;
+        let version = fixed[0];
+        let r#type = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let beacon = &fixed[4..12];
+        let message = fixed[12];
+        let params = &fixed[13..25];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
@@ -37983,14 +39700,24 @@ impl<'a> RxmRlmShort<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let beacon = r.bytes(8, "beacon")?;
-        let message = u8::from_le_bytes(r.array("message")?);
-        let params = r.bytes(2, "params")?;
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 16] = r.run(&[
+            ("version", 1),
+            ("type", 1),
+            ("sv_id", 1),
+            ("reserved0", 1),
+            ("beacon", 8),
+            ("message", 1),
+            ("params", 2),
+            ("reserved1", 1),
+        ])?;
+        let version = fixed[0];
+        let r#type = fixed[1];
+        let sv_id = fixed[2];
+        let reserved0 = fixed[3];
+        let beacon = &fixed[4..12];
+        let message = fixed[12];
+        let params = &fixed[13..15];
+        let reserved1 = fixed[15];
         let trailing = r.rest();
         Ok(Self { version, r#type, sv_id, reserved0, beacon, message, params, reserved1, trailing })
     }
@@ -38079,11 +39806,13 @@ impl<'a> RxmRtcm<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let sub_type = u16::from_le_bytes(r.array("sub_type")?);
-        let ref_station = u16::from_le_bytes(r.array("ref_station")?);
-        let msg_type = u16::from_le_bytes(r.array("msg_type")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("version", 1), ("flags", 1), ("sub_type", 2), ("ref_station", 2), ("msg_type", 2)])?;
+        let version = fixed[0];
+        let flags = fixed[1];
+        let sub_type = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let ref_station = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let msg_type = u16::from_le_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, flags, sub_type, ref_station, msg_type, trailing })
     }
@@ -38188,14 +39917,24 @@ impl<'a> RxmSfrbx<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sig_id = u8::from_le_bytes(r.array("sig_id")?);
-        let freq_id = u8::from_le_bytes(r.array("freq_id")?);
-        let num_words = u8::from_le_bytes(r.array("num_words")?);
-        let chn = u8::from_le_bytes(r.array("chn")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 8] = r.run(&[
+            ("gnss_id", 1),
+            ("sv_id", 1),
+            ("sig_id", 1),
+            ("freq_id", 1),
+            ("num_words", 1),
+            ("chn", 1),
+            ("version", 1),
+            ("reserved0", 1),
+        ])?;
+        let gnss_id_raw = fixed[0];
+        let sv_id = fixed[1];
+        let sig_id = fixed[2];
+        let freq_id = fixed[3];
+        let num_words = fixed[4];
+        let chn = fixed[5];
+        let version = fixed[6];
+        let reserved0 = fixed[7];
         let words = r.group(Some(usize::from(num_words)), 0, 65535, 0, "words")?;
         let trailing = r.rest();
         Ok(Self { gnss_id_raw, sv_id, sig_id, freq_id, num_words, chn, version, reserved0, words, trailing })
@@ -38283,11 +40022,13 @@ impl<'a> RxmSpartn<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let sub_type = u16::from_le_bytes(r.array("sub_type")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let msg_type = u16::from_le_bytes(r.array("msg_type")?);
+        let fixed: &[u8; 8] =
+            r.run(&[("version", 1), ("flags", 1), ("sub_type", 2), ("reserved0", 2), ("msg_type", 2)])?;
+        let version = fixed[0];
+        let flags = fixed[1];
+        let sub_type = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let reserved0 = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let msg_type = u16::from_le_bytes([fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, flags, sub_type, reserved0, msg_type, trailing })
     }
@@ -38464,9 +40205,10 @@ impl<'a> RxmSpartnkey<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_keys = u8::from_le_bytes(r.array("num_keys")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let fixed: &[u8; 4] = r.run(&[("version", 1), ("num_keys", 1), ("reserved0", 2)])?;
+        let version = fixed[0];
+        let num_keys = fixed[1];
+        let reserved0 = u16::from_le_bytes([fixed[2], fixed[3]]);
         let key_info = r.group(Some(usize::from(num_keys)), 0, 65535, 0, "key_info")?;
         let keys = r.group(None, 1, 64, 0, "keys")?;
         let trailing = r.rest();
@@ -38691,10 +40433,11 @@ impl<'a> RxmSvsi<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let week = i16::from_le_bytes(r.array("week")?);
-        let num_vis = u8::from_le_bytes(r.array("num_vis")?);
-        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let fixed: &[u8; 8] = r.run(&[("itow", 4), ("week", 2), ("num_vis", 1), ("num_sv", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let week = i16::from_le_bytes([fixed[4], fixed[5]]);
+        let num_vis = fixed[6];
+        let num_sv = fixed[7];
         let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
         let trailing = r.rest();
         Ok(Self { itow, week, num_vis, num_sv, svs, trailing })
@@ -38890,10 +40633,12 @@ impl<'a> SecSig<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let sig_sec_flags = u8::from_le_bytes(r.array("sig_sec_flags")?);
-        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
-        let jam_num_cent_freqs = u8::from_le_bytes(r.array("jam_num_cent_freqs")?);
+        let fixed: &[u8; 4] =
+            r.run(&[("version", 1), ("sig_sec_flags", 1), ("reserved0", 1), ("jam_num_cent_freqs", 1)])?;
+        let version = fixed[0];
+        let sig_sec_flags = fixed[1];
+        let reserved0 = fixed[2];
+        let jam_num_cent_freqs = fixed[3];
         let cent_freqs = r.group(Some(usize::from(jam_num_cent_freqs)), 0, 65535, 0, "cent_freqs")?;
         let trailing = r.rest();
         Ok(Self { version, sig_sec_flags, reserved0, jam_num_cent_freqs, cent_freqs, trailing })
@@ -39180,8 +40925,9 @@ impl<'a> SecSiglog<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_events = u8::from_le_bytes(r.array("num_events")?);
+        let fixed: &[u8; 2] = r.run(&[("version", 1), ("num_events", 1)])?;
+        let version = fixed[0];
+        let num_events = fixed[1];
         let reserved0 = {
             let b: [u8; 6] = r.array("reserved0")?;
             let mut le = [0u8; 8];
@@ -39262,10 +41008,11 @@ impl<'a> SecSign<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let class_id = u8::from_le_bytes(r.array("class_id")?);
-        let message_id = u8::from_le_bytes(r.array("message_id")?);
-        let checksum = u16::from_le_bytes(r.array("checksum")?);
-        let hash = r.bytes(32, "hash")?;
+        let fixed: &[u8; 36] = r.run(&[("class_id", 1), ("message_id", 1), ("checksum", 2), ("hash", 32)])?;
+        let class_id = fixed[0];
+        let message_id = fixed[1];
+        let checksum = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let hash = &fixed[4..36];
         let trailing = r.rest();
         Ok(Self { version, reserved1, class_id, message_id, checksum, hash, trailing })
     }
@@ -39639,13 +41386,22 @@ impl<'a> TimFchg<'a> {
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let int_delta_freq_raw = i32::from_le_bytes(r.array("int_delta_freq")?);
-        let int_delta_freq_unc_raw = u32::from_le_bytes(r.array("int_delta_freq_unc")?);
-        let int_raw = u32::from_le_bytes(r.array("int_raw")?);
-        let ext_delta_freq_raw = i32::from_le_bytes(r.array("ext_delta_freq")?);
-        let ext_delta_freq_unc_raw = u32::from_le_bytes(r.array("ext_delta_freq_unc")?);
-        let ext_raw = u32::from_le_bytes(r.array("ext_raw")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("itow", 4),
+            ("int_delta_freq", 4),
+            ("int_delta_freq_unc", 4),
+            ("int_raw", 4),
+            ("ext_delta_freq", 4),
+            ("ext_delta_freq_unc", 4),
+            ("ext_raw", 4),
+        ])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let int_delta_freq_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let int_delta_freq_unc_raw = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let int_raw = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let ext_delta_freq_raw = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let ext_delta_freq_unc_raw = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let ext_raw = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -39756,11 +41512,12 @@ impl<'a> TimHoc<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let value_raw = i32::from_le_bytes(r.array("value")?);
+        let fixed: &[u8; 8] = r.run(&[("version", 1), ("osc_id", 1), ("flags", 1), ("reserved1", 1), ("value", 4)])?;
+        let version = fixed[0];
+        let osc_id = fixed[1];
+        let flags = fixed[2];
+        let reserved1 = fixed[3];
+        let value_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
         let trailing = r.rest();
         Ok(Self { version, osc_id, flags, reserved1, value_raw, trailing })
     }
@@ -39997,11 +41754,13 @@ impl<'a> TimSmeas<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let num_meas = u8::from_le_bytes(r.array("num_meas")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let fixed: &[u8; 12] =
+            r.run(&[("version", 1), ("num_meas", 1), ("reserved1", 2), ("itow", 4), ("reserved2", 4)])?;
+        let version = fixed[0];
+        let num_meas = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let itow = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let reserved2 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
         let meas = r.group(Some(usize::from(num_meas)), 0, 65535, 0, "meas")?;
         let trailing = r.rest();
         Ok(Self { version, num_meas, reserved1, itow, reserved2, meas, trailing })
@@ -40125,15 +41884,26 @@ impl<'a> TimSvin<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let dur = u32::from_le_bytes(r.array("dur")?);
-        let mean_x = i32::from_le_bytes(r.array("mean_x")?);
-        let mean_y = i32::from_le_bytes(r.array("mean_y")?);
-        let mean_z = i32::from_le_bytes(r.array("mean_z")?);
-        let mean_v = u32::from_le_bytes(r.array("mean_v")?);
-        let obs = u32::from_le_bytes(r.array("obs")?);
-        let valid = u8::from_le_bytes(r.array("valid")?);
-        let active = u8::from_le_bytes(r.array("active")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("dur", 4),
+            ("mean_x", 4),
+            ("mean_y", 4),
+            ("mean_z", 4),
+            ("mean_v", 4),
+            ("obs", 4),
+            ("valid", 1),
+            ("active", 1),
+            ("reserved1", 2),
+        ])?;
+        let dur = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let mean_x = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let mean_y = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let mean_z = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let mean_v = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let obs = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let valid = fixed[24];
+        let active = fixed[25];
+        let reserved1 = u16::from_le_bytes([fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self { dur, mean_x, mean_y, mean_z, mean_v, obs, valid, active, reserved1, trailing })
     }
@@ -40320,16 +42090,28 @@ impl<'a> TimTm2<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let ch = u8::from_le_bytes(r.array("ch")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let count = u16::from_le_bytes(r.array("count")?);
-        let wn_r = u16::from_le_bytes(r.array("wn_r")?);
-        let wn_f = u16::from_le_bytes(r.array("wn_f")?);
-        let tow_ms_r = u32::from_le_bytes(r.array("tow_ms_r")?);
-        let tow_sub_ms_r = u32::from_le_bytes(r.array("tow_sub_ms_r")?);
-        let tow_ms_f = u32::from_le_bytes(r.array("tow_ms_f")?);
-        let tow_sub_ms_f = u32::from_le_bytes(r.array("tow_sub_ms_f")?);
-        let acc_est = u32::from_le_bytes(r.array("acc_est")?);
+        let fixed: &[u8; 28] = r.run(&[
+            ("ch", 1),
+            ("flags", 1),
+            ("count", 2),
+            ("wn_r", 2),
+            ("wn_f", 2),
+            ("tow_ms_r", 4),
+            ("tow_sub_ms_r", 4),
+            ("tow_ms_f", 4),
+            ("tow_sub_ms_f", 4),
+            ("acc_est", 4),
+        ])?;
+        let ch = fixed[0];
+        let flags = fixed[1];
+        let count = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let wn_r = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let wn_f = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let tow_ms_r = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let tow_sub_ms_r = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let tow_ms_f = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let tow_sub_ms_f = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let acc_est = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
         let trailing = r.rest();
         Ok(Self { ch, flags, count, wn_r, wn_f, tow_ms_r, tow_sub_ms_r, tow_ms_f, tow_sub_ms_f, acc_est, trailing })
     }
@@ -40611,27 +42393,50 @@ impl<'a> TimTos<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let version = u8::from_le_bytes(r.array("version")?);
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
-        let year = u16::from_le_bytes(r.array("year")?);
-        let month = u8::from_le_bytes(r.array("month")?);
-        let day = u8::from_le_bytes(r.array("day")?);
-        let hour = u8::from_le_bytes(r.array("hour")?);
-        let minute = u8::from_le_bytes(r.array("minute")?);
-        let second = u8::from_le_bytes(r.array("second")?);
-        let utc_standard = u8::from_le_bytes(r.array("utc_standard")?);
-        let utc_offset = i32::from_le_bytes(r.array("utc_offset")?);
-        let utc_uncertainty = u32::from_le_bytes(r.array("utc_uncertainty")?);
-        let week = u32::from_le_bytes(r.array("week")?);
-        let tow = u32::from_le_bytes(r.array("tow")?);
-        let gnss_offset = i32::from_le_bytes(r.array("gnss_offset")?);
-        let gnss_uncertainty = u32::from_le_bytes(r.array("gnss_uncertainty")?);
-        let int_osc_offset_raw = i32::from_le_bytes(r.array("int_osc_offset")?);
-        let int_osc_uncertainty_raw = u32::from_le_bytes(r.array("int_osc_uncertainty")?);
-        let ext_osc_offset_raw = i32::from_le_bytes(r.array("ext_osc_offset")?);
-        let ext_osc_uncertainty_raw = u32::from_le_bytes(r.array("ext_osc_uncertainty")?);
+        let fixed: &[u8; 56] = r.run(&[
+            ("version", 1),
+            ("gnss_id", 1),
+            ("reserved1", 2),
+            ("flags", 4),
+            ("year", 2),
+            ("month", 1),
+            ("day", 1),
+            ("hour", 1),
+            ("minute", 1),
+            ("second", 1),
+            ("utc_standard", 1),
+            ("utc_offset", 4),
+            ("utc_uncertainty", 4),
+            ("week", 4),
+            ("tow", 4),
+            ("gnss_offset", 4),
+            ("gnss_uncertainty", 4),
+            ("int_osc_offset", 4),
+            ("int_osc_uncertainty", 4),
+            ("ext_osc_offset", 4),
+            ("ext_osc_uncertainty", 4),
+        ])?;
+        let version = fixed[0];
+        let gnss_id_raw = fixed[1];
+        let reserved1 = u16::from_le_bytes([fixed[2], fixed[3]]);
+        let flags = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let year = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let month = fixed[10];
+        let day = fixed[11];
+        let hour = fixed[12];
+        let minute = fixed[13];
+        let second = fixed[14];
+        let utc_standard = fixed[15];
+        let utc_offset = i32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let utc_uncertainty = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let week = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let tow = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let gnss_offset = i32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let gnss_uncertainty = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let int_osc_offset_raw = i32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let int_osc_uncertainty_raw = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let ext_osc_offset_raw = i32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let ext_osc_uncertainty_raw = u32::from_le_bytes([fixed[52], fixed[53], fixed[54], fixed[55]]);
         let trailing = r.rest();
         Ok(Self {
             version,
@@ -40874,12 +42679,14 @@ impl<'a> TimTp<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let tow_ms = u32::from_le_bytes(r.array("tow_ms")?);
-        let tow_sub_ms_raw = u32::from_le_bytes(r.array("tow_sub_ms")?);
-        let q_err = i32::from_le_bytes(r.array("q_err")?);
-        let week = u16::from_le_bytes(r.array("week")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let ref_info = u8::from_le_bytes(r.array("ref_info")?);
+        let fixed: &[u8; 16] =
+            r.run(&[("tow_ms", 4), ("tow_sub_ms", 4), ("q_err", 4), ("week", 2), ("flags", 1), ("ref_info", 1)])?;
+        let tow_ms = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let tow_sub_ms_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let q_err = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let week = u16::from_le_bytes([fixed[12], fixed[13]]);
+        let flags = fixed[14];
+        let ref_info = fixed[15];
         let trailing = r.rest();
         Ok(Self { tow_ms, tow_sub_ms_raw, q_err, week, flags, ref_info, trailing })
     }
@@ -41074,17 +42881,19 @@ impl<'a> TimVcocalResult<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
+        let fixed: &[u8; 3] = r.run(&[("type", 1), ("version", 1), ("osc_id", 1)])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let osc_id = fixed[2];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let gain_uncertainty_raw = u16::from_le_bytes(r.array("gain_uncertainty")?);
-        let gain_vco_raw = i32::from_le_bytes(r.array("gain_vco")?);
+        let fixed: &[u8; 6] = r.run(&[("gain_uncertainty", 2), ("gain_vco", 4)])?;
+        let gain_uncertainty_raw = u16::from_le_bytes([fixed[0], fixed[1]]);
+        let gain_vco_raw = i32::from_le_bytes([fixed[2], fixed[3], fixed[4], fixed[5]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, osc_id, reserved1, gain_uncertainty_raw, gain_vco_raw, trailing })
     }
@@ -41166,14 +42975,24 @@ impl<'a> TimVcocal<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let r#type = u8::from_le_bytes(r.array("type")?);
-        let version = u8::from_le_bytes(r.array("version")?);
-        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
-        let src_id = u8::from_le_bytes(r.array("src_id")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
-        let raw0 = u16::from_le_bytes(r.array("raw0")?);
-        let raw1 = u16::from_le_bytes(r.array("raw1")?);
-        let max_step_size = u16::from_le_bytes(r.array("max_step_size")?);
+        let fixed: &[u8; 12] = r.run(&[
+            ("type", 1),
+            ("version", 1),
+            ("osc_id", 1),
+            ("src_id", 1),
+            ("reserved1", 2),
+            ("raw0", 2),
+            ("raw1", 2),
+            ("max_step_size", 2),
+        ])?;
+        let r#type = fixed[0];
+        let version = fixed[1];
+        let osc_id = fixed[2];
+        let src_id = fixed[3];
+        let reserved1 = u16::from_le_bytes([fixed[4], fixed[5]]);
+        let raw0 = u16::from_le_bytes([fixed[6], fixed[7]]);
+        let raw1 = u16::from_le_bytes([fixed[8], fixed[9]]);
+        let max_step_size = u16::from_le_bytes([fixed[10], fixed[11]]);
         let trailing = r.rest();
         Ok(Self { r#type, version, osc_id, src_id, reserved1, raw0, raw1, max_step_size, trailing })
     }
@@ -41304,13 +43123,22 @@ impl<'a> TimVrfy<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = i32::from_le_bytes(r.array("itow")?);
-        let frac = i32::from_le_bytes(r.array("frac")?);
-        let delta_ms = i32::from_le_bytes(r.array("delta_ms")?);
-        let delta_ns = i32::from_le_bytes(r.array("delta_ns")?);
-        let wno = u16::from_le_bytes(r.array("wno")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fixed: &[u8; 20] = r.run(&[
+            ("itow", 4),
+            ("frac", 4),
+            ("delta_ms", 4),
+            ("delta_ns", 4),
+            ("wno", 2),
+            ("flags", 1),
+            ("reserved1", 1),
+        ])?;
+        let itow = i32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let frac = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let delta_ms = i32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let delta_ns = i32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let wno = u16::from_le_bytes([fixed[16], fixed[17]]);
+        let flags = fixed[18];
+        let reserved1 = fixed[19];
         let trailing = r.rest();
         Ok(Self { itow, frac, delta_ms, delta_ns, wno, flags, reserved1, trailing })
     }

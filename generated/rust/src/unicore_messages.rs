@@ -352,12 +352,20 @@ impl<'a> VersionB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let device = u32::from_le_bytes(r.array("device")?);
-        let sw_version = r.bytes(33, "sw_version")?;
-        let auth_type = r.bytes(129, "auth_type")?;
-        let psn = r.bytes(66, "psn")?;
-        let efuse_id = r.bytes(33, "efuse_id")?;
-        let comp_time = r.bytes(43, "comp_time")?;
+        let fixed: &[u8; 308] = r.run(&[
+            ("device", 4),
+            ("sw_version", 33),
+            ("auth_type", 129),
+            ("psn", 66),
+            ("efuse_id", 33),
+            ("comp_time", 43),
+        ])?;
+        let device = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let sw_version = &fixed[4..37];
+        let auth_type = &fixed[37..166];
+        let psn = &fixed[166..232];
+        let efuse_id = &fixed[232..265];
+        let comp_time = &fixed[265..308];
         let trailing = r.rest();
         Ok(Self { device, sw_version, auth_type, psn, efuse_id, comp_time, trailing, header: Header::default() })
     }
@@ -632,39 +640,81 @@ impl<'a> AdrnavB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let sol_status_raw = u32::from_le_bytes(r.array("sol_status")?);
-        let pos_type_raw = u32::from_le_bytes(r.array("pos_type")?);
-        let lat = f64::from_le_bytes(r.array("lat")?);
-        let lon = f64::from_le_bytes(r.array("lon")?);
-        let height = f64::from_le_bytes(r.array("height")?);
-        let undulation = f32::from_le_bytes(r.array("undulation")?);
-        let datum_id = u32::from_le_bytes(r.array("datum_id")?);
-        let lat_std = f32::from_le_bytes(r.array("lat_std")?);
-        let lon_std = f32::from_le_bytes(r.array("lon_std")?);
-        let height_std = f32::from_le_bytes(r.array("height_std")?);
-        let station_id = r.bytes(4, "station_id")?;
-        let diff_age = f32::from_le_bytes(r.array("diff_age")?);
-        let sol_age = f32::from_le_bytes(r.array("sol_age")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let num_soln_svs = u8::from_le_bytes(r.array("num_soln_svs")?);
+        let fixed: &[u8; 66] = r.run(&[
+            ("sol_status", 4),
+            ("pos_type", 4),
+            ("lat", 8),
+            ("lon", 8),
+            ("height", 8),
+            ("undulation", 4),
+            ("datum_id", 4),
+            ("lat_std", 4),
+            ("lon_std", 4),
+            ("height_std", 4),
+            ("station_id", 4),
+            ("diff_age", 4),
+            ("sol_age", 4),
+            ("num_svs", 1),
+            ("num_soln_svs", 1),
+        ])?;
+        let sol_status_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_type_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let lon = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let height = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let undulation = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let datum_id = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let lat_std = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let lon_std = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let height_std = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let station_id = &fixed[52..56];
+        let diff_age = f32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let sol_age = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let num_svs = fixed[64];
+        let num_soln_svs = fixed[65];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let ext_sol_stat = u8::from_le_bytes(r.array("ext_sol_stat")?);
-        let gal_bds3_sig_mask = u8::from_le_bytes(r.array("gal_bds3_sig_mask")?);
-        let gps_glo_bds2_sig_mask = u8::from_le_bytes(r.array("gps_glo_bds2_sig_mask")?);
-        let vel_sol_status_raw = u32::from_le_bytes(r.array("vel_sol_status")?);
-        let vel_type_raw = u32::from_le_bytes(r.array("vel_type")?);
-        let latency = f32::from_le_bytes(r.array("latency")?);
-        let age = f32::from_le_bytes(r.array("age")?);
-        let hor_spd = f64::from_le_bytes(r.array("hor_spd")?);
-        let trk_gnd = f64::from_le_bytes(r.array("trk_gnd")?);
-        let vert_spd = f64::from_le_bytes(r.array("vert_spd")?);
-        let vert_spd_std = f32::from_le_bytes(r.array("vert_spd_std")?);
-        let hor_spd_std = f32::from_le_bytes(r.array("hor_spd_std")?);
+        let fixed: &[u8; 51] = r.run(&[
+            ("ext_sol_stat", 1),
+            ("gal_bds3_sig_mask", 1),
+            ("gps_glo_bds2_sig_mask", 1),
+            ("vel_sol_status", 4),
+            ("vel_type", 4),
+            ("latency", 4),
+            ("age", 4),
+            ("hor_spd", 8),
+            ("trk_gnd", 8),
+            ("vert_spd", 8),
+            ("vert_spd_std", 4),
+            ("hor_spd_std", 4),
+        ])?;
+        let ext_sol_stat = fixed[0];
+        let gal_bds3_sig_mask = fixed[1];
+        let gps_glo_bds2_sig_mask = fixed[2];
+        let vel_sol_status_raw = u32::from_le_bytes([fixed[3], fixed[4], fixed[5], fixed[6]]);
+        let vel_type_raw = u32::from_le_bytes([fixed[7], fixed[8], fixed[9], fixed[10]]);
+        let latency = f32::from_le_bytes([fixed[11], fixed[12], fixed[13], fixed[14]]);
+        let age = f32::from_le_bytes([fixed[15], fixed[16], fixed[17], fixed[18]]);
+        let hor_spd = f64::from_le_bytes([
+            fixed[19], fixed[20], fixed[21], fixed[22], fixed[23], fixed[24], fixed[25], fixed[26],
+        ]);
+        let trk_gnd = f64::from_le_bytes([
+            fixed[27], fixed[28], fixed[29], fixed[30], fixed[31], fixed[32], fixed[33], fixed[34],
+        ]);
+        let vert_spd = f64::from_le_bytes([
+            fixed[35], fixed[36], fixed[37], fixed[38], fixed[39], fixed[40], fixed[41], fixed[42],
+        ]);
+        let vert_spd_std = f32::from_le_bytes([fixed[43], fixed[44], fixed[45], fixed[46]]);
+        let hor_spd_std = f32::from_le_bytes([fixed[47], fixed[48], fixed[49], fixed[50]]);
         let trailing = r.rest();
         Ok(Self {
             sol_status_raw,
@@ -1047,34 +1097,75 @@ impl<'a> BestnavxyzB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let sol_status_raw = u32::from_le_bytes(r.array("sol_status")?);
-        let pos_type_raw = u32::from_le_bytes(r.array("pos_type")?);
-        let p_x = f64::from_le_bytes(r.array("p_x")?);
-        let p_y = f64::from_le_bytes(r.array("p_y")?);
-        let p_z = f64::from_le_bytes(r.array("p_z")?);
-        let p_x_std = f32::from_le_bytes(r.array("p_x_std")?);
-        let p_y_std = f32::from_le_bytes(r.array("p_y_std")?);
-        let p_z_std = f32::from_le_bytes(r.array("p_z_std")?);
-        let vel_sol_status_raw = u32::from_le_bytes(r.array("vel_sol_status")?);
-        let vel_type_raw = u32::from_le_bytes(r.array("vel_type")?);
-        let vel_x = f64::from_le_bytes(r.array("vel_x")?);
-        let vel_y = f64::from_le_bytes(r.array("vel_y")?);
-        let vel_z = f64::from_le_bytes(r.array("vel_z")?);
-        let vel_x_std = f32::from_le_bytes(r.array("vel_x_std")?);
-        let vel_y_std = f32::from_le_bytes(r.array("vel_y_std")?);
-        let vel_z_std = f32::from_le_bytes(r.array("vel_z_std")?);
-        let station_id = r.bytes(4, "station_id")?;
-        let vel_latency = f32::from_le_bytes(r.array("vel_latency")?);
-        let diff_age = f32::from_le_bytes(r.array("diff_age")?);
-        let sol_age = f32::from_le_bytes(r.array("sol_age")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let num_soln_svs = u8::from_le_bytes(r.array("num_soln_svs")?);
-        let num_gg_l1 = u8::from_le_bytes(r.array("num_gg_l1")?);
-        let num_soln_multi_svs = u8::from_le_bytes(r.array("num_soln_multi_svs")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let ext_sol_stat = u8::from_le_bytes(r.array("ext_sol_stat")?);
-        let gal_bds3_sig_mask = u8::from_le_bytes(r.array("gal_bds3_sig_mask")?);
-        let gps_glo_bds2_sig_mask = u8::from_le_bytes(r.array("gps_glo_bds2_sig_mask")?);
+        let fixed: &[u8; 115] = r.run(&[
+            ("sol_status", 4),
+            ("pos_type", 4),
+            ("p_x", 8),
+            ("p_y", 8),
+            ("p_z", 8),
+            ("p_x_std", 4),
+            ("p_y_std", 4),
+            ("p_z_std", 4),
+            ("vel_sol_status", 4),
+            ("vel_type", 4),
+            ("vel_x", 8),
+            ("vel_y", 8),
+            ("vel_z", 8),
+            ("vel_x_std", 4),
+            ("vel_y_std", 4),
+            ("vel_z_std", 4),
+            ("station_id", 4),
+            ("vel_latency", 4),
+            ("diff_age", 4),
+            ("sol_age", 4),
+            ("num_svs", 1),
+            ("num_soln_svs", 1),
+            ("num_gg_l1", 1),
+            ("num_soln_multi_svs", 1),
+            ("reserved1", 4),
+            ("ext_sol_stat", 1),
+            ("gal_bds3_sig_mask", 1),
+            ("gps_glo_bds2_sig_mask", 1),
+        ])?;
+        let sol_status_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_type_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let p_x =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let p_y = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let p_z = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let p_x_std = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let p_y_std = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let p_z_std = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let vel_sol_status_raw = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let vel_type_raw = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let vel_x = f64::from_le_bytes([
+            fixed[52], fixed[53], fixed[54], fixed[55], fixed[56], fixed[57], fixed[58], fixed[59],
+        ]);
+        let vel_y = f64::from_le_bytes([
+            fixed[60], fixed[61], fixed[62], fixed[63], fixed[64], fixed[65], fixed[66], fixed[67],
+        ]);
+        let vel_z = f64::from_le_bytes([
+            fixed[68], fixed[69], fixed[70], fixed[71], fixed[72], fixed[73], fixed[74], fixed[75],
+        ]);
+        let vel_x_std = f32::from_le_bytes([fixed[76], fixed[77], fixed[78], fixed[79]]);
+        let vel_y_std = f32::from_le_bytes([fixed[80], fixed[81], fixed[82], fixed[83]]);
+        let vel_z_std = f32::from_le_bytes([fixed[84], fixed[85], fixed[86], fixed[87]]);
+        let station_id = &fixed[88..92];
+        let vel_latency = f32::from_le_bytes([fixed[92], fixed[93], fixed[94], fixed[95]]);
+        let diff_age = f32::from_le_bytes([fixed[96], fixed[97], fixed[98], fixed[99]]);
+        let sol_age = f32::from_le_bytes([fixed[100], fixed[101], fixed[102], fixed[103]]);
+        let num_svs = fixed[104];
+        let num_soln_svs = fixed[105];
+        let num_gg_l1 = fixed[106];
+        let num_soln_multi_svs = fixed[107];
+        let reserved1 = u32::from_le_bytes([fixed[108], fixed[109], fixed[110], fixed[111]]);
+        let ext_sol_stat = fixed[112];
+        let gal_bds3_sig_mask = fixed[113];
+        let gps_glo_bds2_sig_mask = fixed[114];
         let trailing = r.rest();
         Ok(Self {
             sol_status_raw,
@@ -1287,23 +1378,42 @@ impl<'a> RtkstatusB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let gps_source = u32::from_le_bytes(r.array("gps_source")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let bds_source1 = u32::from_le_bytes(r.array("bds_source1")?);
-        let bds_source2 = u32::from_le_bytes(r.array("bds_source2")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
-        let glo_source = u32::from_le_bytes(r.array("glo_source")?);
-        let reserved3 = u32::from_le_bytes(r.array("reserved3")?);
-        let gal_source1 = u32::from_le_bytes(r.array("gal_source1")?);
-        let gal_source2 = u32::from_le_bytes(r.array("gal_source2")?);
-        let qzss_source = u32::from_le_bytes(r.array("qzss_source")?);
-        let reserved4 = u32::from_le_bytes(r.array("reserved4")?);
-        let pos_type_raw = u32::from_le_bytes(r.array("pos_type")?);
-        let calc_status = u32::from_le_bytes(r.array("calc_status")?);
-        let ion_detected = u8::from_le_bytes(r.array("ion_detected")?);
-        let dual_rtk_flag = u8::from_le_bytes(r.array("dual_rtk_flag")?);
-        let adr_number = u8::from_le_bytes(r.array("adr_number")?);
-        let reserved5 = u8::from_le_bytes(r.array("reserved5")?);
+        let fixed: &[u8; 56] = r.run(&[
+            ("gps_source", 4),
+            ("reserved1", 4),
+            ("bds_source1", 4),
+            ("bds_source2", 4),
+            ("reserved2", 4),
+            ("glo_source", 4),
+            ("reserved3", 4),
+            ("gal_source1", 4),
+            ("gal_source2", 4),
+            ("qzss_source", 4),
+            ("reserved4", 4),
+            ("pos_type", 4),
+            ("calc_status", 4),
+            ("ion_detected", 1),
+            ("dual_rtk_flag", 1),
+            ("adr_number", 1),
+            ("reserved5", 1),
+        ])?;
+        let gps_source = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let reserved1 = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let bds_source1 = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let bds_source2 = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let reserved2 = u32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let glo_source = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let reserved3 = u32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let gal_source1 = u32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let gal_source2 = u32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let qzss_source = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let reserved4 = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let pos_type_raw = u32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let calc_status = u32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let ion_detected = fixed[52];
+        let dual_rtk_flag = fixed[53];
+        let adr_number = fixed[54];
+        let reserved5 = fixed[55];
         let trailing = r.rest();
         Ok(Self {
             gps_source,
@@ -1594,23 +1704,42 @@ impl<'a> UniheadingB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let sol_status_raw = u32::from_le_bytes(r.array("sol_status")?);
-        let pos_type_raw = u32::from_le_bytes(r.array("pos_type")?);
-        let length = f32::from_le_bytes(r.array("length")?);
-        let heading = f32::from_le_bytes(r.array("heading")?);
-        let pitch = f32::from_le_bytes(r.array("pitch")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let hdg_std = f32::from_le_bytes(r.array("hdg_std")?);
-        let ptch_std = f32::from_le_bytes(r.array("ptch_std")?);
-        let station_id = r.bytes(4, "station_id")?;
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let num_soln_svs = u8::from_le_bytes(r.array("num_soln_svs")?);
-        let num_obs = u8::from_le_bytes(r.array("num_obs")?);
-        let num_multi = u8::from_le_bytes(r.array("num_multi")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let ext_sol_stat = u8::from_le_bytes(r.array("ext_sol_stat")?);
-        let gal_bds3_sig_mask = u8::from_le_bytes(r.array("gal_bds3_sig_mask")?);
-        let gps_glo_bds2_sig_mask = u8::from_le_bytes(r.array("gps_glo_bds2_sig_mask")?);
+        let fixed: &[u8; 44] = r.run(&[
+            ("sol_status", 4),
+            ("pos_type", 4),
+            ("length", 4),
+            ("heading", 4),
+            ("pitch", 4),
+            ("reserved1", 4),
+            ("hdg_std", 4),
+            ("ptch_std", 4),
+            ("station_id", 4),
+            ("num_svs", 1),
+            ("num_soln_svs", 1),
+            ("num_obs", 1),
+            ("num_multi", 1),
+            ("reserved2", 1),
+            ("ext_sol_stat", 1),
+            ("gal_bds3_sig_mask", 1),
+            ("gps_glo_bds2_sig_mask", 1),
+        ])?;
+        let sol_status_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_type_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let length = f32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
+        let heading = f32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let pitch = f32::from_le_bytes([fixed[16], fixed[17], fixed[18], fixed[19]]);
+        let reserved1 = u32::from_le_bytes([fixed[20], fixed[21], fixed[22], fixed[23]]);
+        let hdg_std = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let ptch_std = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let station_id = &fixed[32..36];
+        let num_svs = fixed[36];
+        let num_soln_svs = fixed[37];
+        let num_obs = fixed[38];
+        let num_multi = fixed[39];
+        let reserved2 = fixed[40];
+        let ext_sol_stat = fixed[41];
+        let gal_bds3_sig_mask = fixed[42];
+        let gps_glo_bds2_sig_mask = fixed[43];
         let trailing = r.rest();
         Ok(Self {
             sol_status_raw,
@@ -1852,41 +1981,91 @@ impl<'a> PvtslnB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let best_pos_type_raw = u32::from_le_bytes(r.array("best_pos_type")?);
-        let best_pos_height = f32::from_le_bytes(r.array("best_pos_height")?);
-        let best_pos_lat = f64::from_le_bytes(r.array("best_pos_lat")?);
-        let best_pos_lon = f64::from_le_bytes(r.array("best_pos_lon")?);
-        let best_pos_height_std = f32::from_le_bytes(r.array("best_pos_height_std")?);
-        let best_pos_lat_std = f32::from_le_bytes(r.array("best_pos_lat_std")?);
-        let best_pos_lon_std = f32::from_le_bytes(r.array("best_pos_lon_std")?);
-        let best_pos_diff_age = f32::from_le_bytes(r.array("best_pos_diff_age")?);
-        let psr_pos_type_raw = u32::from_le_bytes(r.array("psr_pos_type")?);
-        let psr_pos_height = f32::from_le_bytes(r.array("psr_pos_height")?);
-        let psr_pos_lat = f64::from_le_bytes(r.array("psr_pos_lat")?);
-        let psr_pos_lon = f64::from_le_bytes(r.array("psr_pos_lon")?);
-        let undulation = f32::from_le_bytes(r.array("undulation")?);
-        let best_pos_svs = u8::from_le_bytes(r.array("best_pos_svs")?);
-        let best_pos_soln_svs = u8::from_le_bytes(r.array("best_pos_soln_svs")?);
-        let psr_pos_svs = u8::from_le_bytes(r.array("psr_pos_svs")?);
-        let psr_pos_soln_svs = u8::from_le_bytes(r.array("psr_pos_soln_svs")?);
-        let psr_vel_north = f64::from_le_bytes(r.array("psr_vel_north")?);
-        let psr_vel_east = f64::from_le_bytes(r.array("psr_vel_east")?);
-        let psr_vel_ground = f64::from_le_bytes(r.array("psr_vel_ground")?);
-        let heading_type_raw = u32::from_le_bytes(r.array("heading_type")?);
-        let heading_length = f32::from_le_bytes(r.array("heading_length")?);
-        let heading_degree = f32::from_le_bytes(r.array("heading_degree")?);
-        let heading_pitch = f32::from_le_bytes(r.array("heading_pitch")?);
-        let heading_tracked_svs = u8::from_le_bytes(r.array("heading_tracked_svs")?);
-        let heading_soln_svs = u8::from_le_bytes(r.array("heading_soln_svs")?);
-        let heading_gg_l1 = u8::from_le_bytes(r.array("heading_gg_l1")?);
-        let heading_gg_l1_l2 = u8::from_le_bytes(r.array("heading_gg_l1_l2")?);
-        let gdop = f32::from_le_bytes(r.array("gdop")?);
-        let pdop = f32::from_le_bytes(r.array("pdop")?);
-        let hdop = f32::from_le_bytes(r.array("hdop")?);
-        let htdop = f32::from_le_bytes(r.array("htdop")?);
-        let tdop = f32::from_le_bytes(r.array("tdop")?);
-        let cutoff = f32::from_le_bytes(r.array("cutoff")?);
-        let prn_num = u16::from_le_bytes(r.array("prn_num")?);
+        let fixed: &[u8; 142] = r.run(&[
+            ("best_pos_type", 4),
+            ("best_pos_height", 4),
+            ("best_pos_lat", 8),
+            ("best_pos_lon", 8),
+            ("best_pos_height_std", 4),
+            ("best_pos_lat_std", 4),
+            ("best_pos_lon_std", 4),
+            ("best_pos_diff_age", 4),
+            ("psr_pos_type", 4),
+            ("psr_pos_height", 4),
+            ("psr_pos_lat", 8),
+            ("psr_pos_lon", 8),
+            ("undulation", 4),
+            ("best_pos_svs", 1),
+            ("best_pos_soln_svs", 1),
+            ("psr_pos_svs", 1),
+            ("psr_pos_soln_svs", 1),
+            ("psr_vel_north", 8),
+            ("psr_vel_east", 8),
+            ("psr_vel_ground", 8),
+            ("heading_type", 4),
+            ("heading_length", 4),
+            ("heading_degree", 4),
+            ("heading_pitch", 4),
+            ("heading_tracked_svs", 1),
+            ("heading_soln_svs", 1),
+            ("heading_gg_l1", 1),
+            ("heading_gg_l1_l2", 1),
+            ("gdop", 4),
+            ("pdop", 4),
+            ("hdop", 4),
+            ("htdop", 4),
+            ("tdop", 4),
+            ("cutoff", 4),
+            ("prn_num", 2),
+        ])?;
+        let best_pos_type_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let best_pos_height = f32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let best_pos_lat =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let best_pos_lon = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let best_pos_height_std = f32::from_le_bytes([fixed[24], fixed[25], fixed[26], fixed[27]]);
+        let best_pos_lat_std = f32::from_le_bytes([fixed[28], fixed[29], fixed[30], fixed[31]]);
+        let best_pos_lon_std = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let best_pos_diff_age = f32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let psr_pos_type_raw = u32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let psr_pos_height = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let psr_pos_lat = f64::from_le_bytes([
+            fixed[48], fixed[49], fixed[50], fixed[51], fixed[52], fixed[53], fixed[54], fixed[55],
+        ]);
+        let psr_pos_lon = f64::from_le_bytes([
+            fixed[56], fixed[57], fixed[58], fixed[59], fixed[60], fixed[61], fixed[62], fixed[63],
+        ]);
+        let undulation = f32::from_le_bytes([fixed[64], fixed[65], fixed[66], fixed[67]]);
+        let best_pos_svs = fixed[68];
+        let best_pos_soln_svs = fixed[69];
+        let psr_pos_svs = fixed[70];
+        let psr_pos_soln_svs = fixed[71];
+        let psr_vel_north = f64::from_le_bytes([
+            fixed[72], fixed[73], fixed[74], fixed[75], fixed[76], fixed[77], fixed[78], fixed[79],
+        ]);
+        let psr_vel_east = f64::from_le_bytes([
+            fixed[80], fixed[81], fixed[82], fixed[83], fixed[84], fixed[85], fixed[86], fixed[87],
+        ]);
+        let psr_vel_ground = f64::from_le_bytes([
+            fixed[88], fixed[89], fixed[90], fixed[91], fixed[92], fixed[93], fixed[94], fixed[95],
+        ]);
+        let heading_type_raw = u32::from_le_bytes([fixed[96], fixed[97], fixed[98], fixed[99]]);
+        let heading_length = f32::from_le_bytes([fixed[100], fixed[101], fixed[102], fixed[103]]);
+        let heading_degree = f32::from_le_bytes([fixed[104], fixed[105], fixed[106], fixed[107]]);
+        let heading_pitch = f32::from_le_bytes([fixed[108], fixed[109], fixed[110], fixed[111]]);
+        let heading_tracked_svs = fixed[112];
+        let heading_soln_svs = fixed[113];
+        let heading_gg_l1 = fixed[114];
+        let heading_gg_l1_l2 = fixed[115];
+        let gdop = f32::from_le_bytes([fixed[116], fixed[117], fixed[118], fixed[119]]);
+        let pdop = f32::from_le_bytes([fixed[120], fixed[121], fixed[122], fixed[123]]);
+        let hdop = f32::from_le_bytes([fixed[124], fixed[125], fixed[126], fixed[127]]);
+        let htdop = f32::from_le_bytes([fixed[128], fixed[129], fixed[130], fixed[131]]);
+        let tdop = f32::from_le_bytes([fixed[132], fixed[133], fixed[134], fixed[135]]);
+        let cutoff = f32::from_le_bytes([fixed[136], fixed[137], fixed[138], fixed[139]]);
+        let prn_num = u16::from_le_bytes([fixed[140], fixed[141]]);
         let prns = r.group(None, 0, 65535, 0, "prns")?;
         let trailing = r.rest();
         Ok(Self {
@@ -2273,39 +2452,81 @@ impl<'a> BestnavB<'a> {
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("UNICORE");
-        let sol_status_raw = u32::from_le_bytes(r.array("sol_status")?);
-        let pos_type_raw = u32::from_le_bytes(r.array("pos_type")?);
-        let lat = f64::from_le_bytes(r.array("lat")?);
-        let lon = f64::from_le_bytes(r.array("lon")?);
-        let height = f64::from_le_bytes(r.array("height")?);
-        let undulation = f32::from_le_bytes(r.array("undulation")?);
-        let datum_id = u32::from_le_bytes(r.array("datum_id")?);
-        let lat_std = f32::from_le_bytes(r.array("lat_std")?);
-        let lon_std = f32::from_le_bytes(r.array("lon_std")?);
-        let height_std = f32::from_le_bytes(r.array("height_std")?);
-        let station_id = r.bytes(4, "station_id")?;
-        let diff_age = f32::from_le_bytes(r.array("diff_age")?);
-        let sol_age = f32::from_le_bytes(r.array("sol_age")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
-        let num_soln_svs = u8::from_le_bytes(r.array("num_soln_svs")?);
+        let fixed: &[u8; 66] = r.run(&[
+            ("sol_status", 4),
+            ("pos_type", 4),
+            ("lat", 8),
+            ("lon", 8),
+            ("height", 8),
+            ("undulation", 4),
+            ("datum_id", 4),
+            ("lat_std", 4),
+            ("lon_std", 4),
+            ("height_std", 4),
+            ("station_id", 4),
+            ("diff_age", 4),
+            ("sol_age", 4),
+            ("num_svs", 1),
+            ("num_soln_svs", 1),
+        ])?;
+        let sol_status_raw = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let pos_type_raw = u32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let lat =
+            f64::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11], fixed[12], fixed[13], fixed[14], fixed[15]]);
+        let lon = f64::from_le_bytes([
+            fixed[16], fixed[17], fixed[18], fixed[19], fixed[20], fixed[21], fixed[22], fixed[23],
+        ]);
+        let height = f64::from_le_bytes([
+            fixed[24], fixed[25], fixed[26], fixed[27], fixed[28], fixed[29], fixed[30], fixed[31],
+        ]);
+        let undulation = f32::from_le_bytes([fixed[32], fixed[33], fixed[34], fixed[35]]);
+        let datum_id = u32::from_le_bytes([fixed[36], fixed[37], fixed[38], fixed[39]]);
+        let lat_std = f32::from_le_bytes([fixed[40], fixed[41], fixed[42], fixed[43]]);
+        let lon_std = f32::from_le_bytes([fixed[44], fixed[45], fixed[46], fixed[47]]);
+        let height_std = f32::from_le_bytes([fixed[48], fixed[49], fixed[50], fixed[51]]);
+        let station_id = &fixed[52..56];
+        let diff_age = f32::from_le_bytes([fixed[56], fixed[57], fixed[58], fixed[59]]);
+        let sol_age = f32::from_le_bytes([fixed[60], fixed[61], fixed[62], fixed[63]]);
+        let num_svs = fixed[64];
+        let num_soln_svs = fixed[65];
         let reserved1 = {
             let b: [u8; 3] = r.array("reserved1")?;
             let mut le = [0u8; 4];
             le[..3].copy_from_slice(&b);
             u32::from_le_bytes(le)
         };
-        let ext_sol_stat = u8::from_le_bytes(r.array("ext_sol_stat")?);
-        let gal_bds3_sig_mask = u8::from_le_bytes(r.array("gal_bds3_sig_mask")?);
-        let gps_glo_bds2_sig_mask = u8::from_le_bytes(r.array("gps_glo_bds2_sig_mask")?);
-        let vel_sol_status_raw = u32::from_le_bytes(r.array("vel_sol_status")?);
-        let vel_type_raw = u32::from_le_bytes(r.array("vel_type")?);
-        let latency = f32::from_le_bytes(r.array("latency")?);
-        let age = f32::from_le_bytes(r.array("age")?);
-        let hor_spd = f64::from_le_bytes(r.array("hor_spd")?);
-        let trk_gnd = f64::from_le_bytes(r.array("trk_gnd")?);
-        let vert_spd = f64::from_le_bytes(r.array("vert_spd")?);
-        let vert_spd_std = f32::from_le_bytes(r.array("vert_spd_std")?);
-        let hor_spd_std = f32::from_le_bytes(r.array("hor_spd_std")?);
+        let fixed: &[u8; 51] = r.run(&[
+            ("ext_sol_stat", 1),
+            ("gal_bds3_sig_mask", 1),
+            ("gps_glo_bds2_sig_mask", 1),
+            ("vel_sol_status", 4),
+            ("vel_type", 4),
+            ("latency", 4),
+            ("age", 4),
+            ("hor_spd", 8),
+            ("trk_gnd", 8),
+            ("vert_spd", 8),
+            ("vert_spd_std", 4),
+            ("hor_spd_std", 4),
+        ])?;
+        let ext_sol_stat = fixed[0];
+        let gal_bds3_sig_mask = fixed[1];
+        let gps_glo_bds2_sig_mask = fixed[2];
+        let vel_sol_status_raw = u32::from_le_bytes([fixed[3], fixed[4], fixed[5], fixed[6]]);
+        let vel_type_raw = u32::from_le_bytes([fixed[7], fixed[8], fixed[9], fixed[10]]);
+        let latency = f32::from_le_bytes([fixed[11], fixed[12], fixed[13], fixed[14]]);
+        let age = f32::from_le_bytes([fixed[15], fixed[16], fixed[17], fixed[18]]);
+        let hor_spd = f64::from_le_bytes([
+            fixed[19], fixed[20], fixed[21], fixed[22], fixed[23], fixed[24], fixed[25], fixed[26],
+        ]);
+        let trk_gnd = f64::from_le_bytes([
+            fixed[27], fixed[28], fixed[29], fixed[30], fixed[31], fixed[32], fixed[33], fixed[34],
+        ]);
+        let vert_spd = f64::from_le_bytes([
+            fixed[35], fixed[36], fixed[37], fixed[38], fixed[39], fixed[40], fixed[41], fixed[42],
+        ]);
+        let vert_spd_std = f32::from_le_bytes([fixed[43], fixed[44], fixed[45], fixed[46]]);
+        let hor_spd_std = f32::from_le_bytes([fixed[47], fixed[48], fixed[49], fixed[50]]);
         let trailing = r.rest();
         Ok(Self {
             sol_status_raw,

@@ -26,13 +26,62 @@ pub const CHECKSUM_SIZE: usize = 2;
 pub const MAX_PAYLOAD: usize = 0xFFFF;
 
 /// The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256.
+///
+/// Eight bytes a step, as the C pair's `ubx_checksum` takes them: a 64-bit word is four 16-bit
+/// lanes of its even bytes and four of its odd ones, each lane its own A (the sum of its bytes)
+/// and B (the sum of A over the steps before), two steps at a time (the second's B takes the
+/// first's bytes). The lanes are brought back modulo 256 (a mask, so that no lane carries into the
+/// next) every 112 bytes, before a B could outgrow 16 bits. The bytes after the last whole step are
+/// the last eight bytes' word shifted down: a step of those bytes after `pad` zeros, which add
+/// nothing to A and `pad` times A to B, taken off at the end. A is then the lanes' sum and B eight
+/// times their B plus each lane's A weighted by the running sums its byte is in (8 for a step's
+/// first byte, ..., 1 for its last), each a weighted sum of lanes read as the top lane of a
+/// product. No chain of one addition a byte: about a fifth of the byte loop's time on a frame of 50
+/// bytes. Under eight bytes, byte by byte.
 pub fn fletcher8(data: &[u8]) -> [u8; 2] {
-    let (mut a, mut b) = (0u8, 0u8);
-    for &byte in data {
-        a = a.wrapping_add(byte);
-        b = b.wrapping_add(a);
+    const LANES: u64 = 0x00FF_00FF_00FF_00FF;
+    let word = |bytes: &[u8]| u64::from_le_bytes(bytes.try_into().unwrap_or([0; 8]));
+    if data.len() < 8 {
+        let (mut a, mut b) = (0u8, 0u8);
+        for &byte in data {
+            a = a.wrapping_add(byte);
+            b = b.wrapping_add(a);
+        }
+        return [a, b];
     }
-    [a, b]
+    // (even, odd, before) after one step of word `w`
+    let step = |(even, odd, before): (u64, u64, u64), w: u64| {
+        ((even + (w & LANES)) & LANES, (odd + (w >> 8 & LANES)) & LANES, (before + even + odd) & LANES)
+    };
+    let (mut even, mut odd, mut before) = (0u64, 0u64, 0u64);
+    let mut rest = data;
+    while rest.len() >= 16 {
+        let (block, tail) = rest.split_at(if rest.len() >= 112 { 112 } else { rest.len() & !15 });
+        let (mut e, mut o, mut b) = (even, odd, before);
+        for pair in block.chunks_exact(16) {
+            let (w, v) = (word(&pair[..8]), word(&pair[8..]));
+            b += 2 * (e + o) + (w & LANES) + (w >> 8 & LANES);
+            e += (w & LANES) + (v & LANES);
+            o += (w >> 8 & LANES) + (v >> 8 & LANES);
+        }
+        (even, odd, before) = (e & LANES, o & LANES, b & LANES);
+        rest = tail;
+    }
+    if rest.len() >= 8 {
+        (even, odd, before) = step((even, odd, before), word(&rest[..8]));
+        rest = &rest[8..];
+    }
+    let pad = (8 - rest.len() as u64) % 8;
+    if !rest.is_empty() {
+        (even, odd, before) = step((even, odd, before), word(&data[data.len() - 8..]) >> (8 * pad));
+    }
+    let top = |lanes: u64, weights: u64| lanes.wrapping_mul(weights) >> 48;
+    let a = top(even + odd, 0x0001_0001_0001_0001);
+    let b = (8 * top(before, 0x0001_0001_0001_0001))
+        .wrapping_add(top(even, 0x0008_0006_0004_0002))
+        .wrapping_add(top(odd, 0x0007_0005_0003_0001))
+        .wrapping_sub(pad * a);
+    [a as u8, b as u8]
 }
 
 /// What is wrong with a frame, a payload or a message to encode.
@@ -210,7 +259,7 @@ impl std::error::Error for UbxError {}
 /// One whole frame, its sync bytes, length and checksum checked: its class, id and payload.
 pub fn split_frame(data: &[u8]) -> Result<(u8, u8, &[u8]), UbxError> {
     let sync = data.len().min(2);
-    if data[..sync] != SYNC[..sync] {
+    if !matches!(data, [0xB5, 0x62, ..]) && data[..sync] != SYNC[..sync] {
         let mut sent = [0u8; 3];
         sent[..sync].copy_from_slice(&data[..sync]);
         let expected = [SYNC[0], SYNC[1], 0];
@@ -302,6 +351,37 @@ impl<'a> ByteReader<'a> {
         let mut out = [0u8; N];
         out.copy_from_slice(self.bytes(N, field)?);
         Ok(out)
+    }
+
+    /// The next `N` bytes, those of a run of fields at fixed offsets (`fields`: each one's name and
+    /// bytes, in order, `N` in all), after one length check for the whole run; a payload too short
+    /// for the run names the first field it cuts, as reading field by field would.
+    #[inline]
+    pub fn run<const N: usize>(&mut self, fields: &[(&'static str, usize)]) -> Result<&'a [u8; N], UbxError> {
+        match self.payload.get(self.pos..).and_then(<[u8]>::first_chunk::<N>) {
+            Some(bytes) => {
+                self.pos += N;
+                Ok(bytes)
+            }
+            None => Err(self.cut(fields)),
+        }
+    }
+
+    /// The error of the first of `fields` (name and bytes, from here on) the payload cuts.
+    #[cold]
+    #[inline(never)]
+    fn cut(&self, fields: &[(&'static str, usize)]) -> UbxError {
+        let mut offset = self.pos;
+        for &(field, width) in fields {
+            if offset + width > self.payload.len() {
+                let detail = Detail::Short { offset, width, length: self.payload.len() };
+                return self.error(UbxErrorKind::ShortPayload, field, detail);
+            }
+            offset += width;
+        }
+        let (field, width) = fields.last().copied().unwrap_or(("", 0));
+        let detail = Detail::Short { offset: offset - width, width, length: self.payload.len() };
+        self.error(UbxErrorKind::ShortPayload, field, detail)
     }
 
     /// The bytes left after `after` bytes the layout still takes (a field of the bytes left).
@@ -828,6 +908,22 @@ mod tests {
     }
 
     #[test]
+    fn fletcher8_eight_bytes_a_step_sums_as_byte_by_byte() {
+        let data: std::vec::Vec<u8> = (0u32..700).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8 | 0x80).collect();
+        for end in 0..data.len() {
+            for start in [0, 1, 7] {
+                let (mut a, mut b) = (0u8, 0u8);
+                for &byte in &data[start.min(end)..end] {
+                    a = a.wrapping_add(byte);
+                    b = b.wrapping_add(a);
+                }
+                assert_eq!(fletcher8(&data[start.min(end)..end]), [a, b], "bytes {start}..{end}");
+            }
+        }
+        assert_eq!(fletcher8(&[0xFF; 300]), [0xD4, 0xA2]);
+    }
+
+    #[test]
     fn frame_errors_say_what_is_wrong() {
         let mut bad = ACK;
         bad[9] = 0x38;
@@ -840,6 +936,24 @@ mod tests {
             "a UBX frame starts with B5 62, not B5 00"
         );
         assert_eq!(split_frame(&ACK[..4]).unwrap_err().kind, UbxErrorKind::ShortFrame);
+    }
+
+    #[test]
+    fn a_run_of_fields_checks_its_length_once_and_names_the_field_cut() {
+        let fields = [("itow", 4), ("year", 2), ("month", 1)];
+        let mut r = ByteReader::new(&[1, 0, 0, 0, 0xEA, 7, 3, 9], "NAV-PVT", (1, 7));
+        assert_eq!(r.run::<7>(&fields), Ok(&[1, 0, 0, 0, 0xEA, 7, 3]));
+        assert_eq!(r.remaining(), 1);
+        for (length, field, text) in [
+            (0, "itow", "itow needs bytes 0-3, the payload has 0"),
+            (5, "year", "year needs bytes 4-5, the payload has 5"),
+            (6, "month", "month needs byte 6, the payload has 6"),
+        ] {
+            let payload = [0u8; 7];
+            let err = ByteReader::new(&payload[..length], "NAV-PVT", (1, 7)).run::<7>(&fields).unwrap_err();
+            assert_eq!((err.kind, err.field), (UbxErrorKind::ShortPayload, Some(field)));
+            assert_eq!(err.text().to_string(), text);
+        }
     }
 
     #[test]

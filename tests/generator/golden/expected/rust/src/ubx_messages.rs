@@ -61,8 +61,9 @@ impl<'a> AckAck<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let cls_id = u8::from_le_bytes(r.array("cls_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let fixed: &[u8; 2] = r.run(&[("cls_id", 1), ("msg_id", 1)])?;
+        let cls_id = fixed[0];
+        let msg_id = fixed[1];
         let trailing = r.rest();
         Ok(Self { cls_id, msg_id, trailing })
     }
@@ -223,11 +224,12 @@ impl<'a> NavDemo<'a> {
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
-        let itow = u32::from_le_bytes(r.array("itow")?);
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
-        let num_svs = u8::from_le_bytes(r.array("num_svs")?);
+        let fixed: &[u8; 12] = r.run(&[("itow", 4), ("lat", 4), ("flags", 1), ("reserved0", 2), ("num_svs", 1)])?;
+        let itow = u32::from_le_bytes([fixed[0], fixed[1], fixed[2], fixed[3]]);
+        let lat_raw = i32::from_le_bytes([fixed[4], fixed[5], fixed[6], fixed[7]]);
+        let flags = fixed[8];
+        let reserved0 = u16::from_le_bytes([fixed[9], fixed[10]]);
+        let num_svs = fixed[11];
         let svs = r.group(Some(usize::from(num_svs)), 0, 65535, 0, "svs")?;
         let text = r.left(0);
         let trailing = r.rest();
