@@ -1178,11 +1178,12 @@ class Record:
 @dataclass(kw_only=True, slots=True)
 class Application(Record):
     """An application message (IMO SN.1/Circ.289, regional ones): the data bits of the binary
-    messages CARRIERS whose DAC and FI fields hold DAC and FID."""
+    messages whose DAC and FI fields hold a key of CARRIERS, of the types it names (DAC and FID: the
+    first key)."""
 
     DAC: ClassVar[int]
     FID: ClassVar[int]
-    CARRIERS: ClassVar[tuple[int, ...]]
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]]
 
     def bits(self, where: str) -> str:
         """The data bits it is sent as."""
@@ -1306,7 +1307,7 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     first, second = data.dispatch  # the DAC's and the FI's members
     dac, fid = getattr(message, first), getattr(message, second)
     cls = applications.get((dac, fid))
-    if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
+    if cls is None or getattr(message, "message_type") not in cls.CARRIERS[dac, fid]:
         return None
     reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
     try:
