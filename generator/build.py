@@ -18,7 +18,7 @@ from .field_types import BIT_TYPES, float_bits
 from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, ConfigDatabase,
                     ConfigEnum, ConfigGroup, ConfigKey, EnumDef, EnumValue,
                     Example, Fact, Ones, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
-                    PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
+                    PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Route, Sentence, Spec,
                     Special, TableDef, TagCode)
 from .resolve import resolve
 
@@ -453,8 +453,8 @@ def _payload(doc: Document) -> Payload:
     examples = [PayloadExample(e["manual"], e["where"], e["payload"], e["fill_bits"], e.get("expect"),
                                Origin(file, ("examples", i))) for i, e in enumerate(d.get("examples", []))]
     application = d.get("application")
-    dacs = [] if not application else application["dac"] if isinstance(application["dac"], list) else [application["dac"]]
+    routes = [Route(a["dac"] if isinstance(a["dac"], list) else [a["dac"]], a["fid"], a["in"])
+              for a in (application if isinstance(application, list) else [application] if application else [])]
     return Payload(d["message"], d["name"], d["doc"], d.get("types", []), d["manuals"], d.get("length"),
                    _payload_items(d["fields"], file, ("fields",)), _notes(d), examples, Origin(file, ()),
-                   application=(dacs[0], application["fid"]) if application else None, dacs=dacs,
-                   carriers=application["in"] if application else [])
+                   application=(routes[0].dacs[0], routes[0].fid) if routes else None, routes=routes)

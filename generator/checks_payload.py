@@ -136,6 +136,12 @@ def check_items(payload: Payload, report: Report) -> None:
         _check_entry_choices(payload, group, report)
     for choice in _choices(payload.items):
         _check_choice(choice, report)
+        selector = choice.selector
+        if payload.application is not None and selector is not None and selector.offset is not None \
+                and choice.offset is not None and (selector.offset > choice.offset or selector.optional):
+            # the C and Rust readers of an application pick the case by the selector's value read before
+            report(choice.origin, "A007", f"choice {choice.id}: an application's choice follows its selector, "
+                   "a required field", "by")
     _check_counts(payload, report)
     reported: set[str] = set()
     for path in _paths(payload.items):

@@ -12,7 +12,7 @@ from __future__ import annotations
 import jinja2
 
 from .emit import RUNTIME, header, runtime_source
-from .emit_rust_ais import member_name
+from .emit_rust_ais import member_name, read_before
 from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
 from .names_c import ais_entry_record, ais_struct, layout_const, member
@@ -123,6 +123,8 @@ class _Record:
             return f"ais_json_text(j, {key}, {value});"
         if c_type(f) == BITS:
             return f"ais_json_bits(j, {key}, {value});"
+        if c_type(f) == "uint64_t":
+            return f"ais_json_uint(j, {key}, (unsigned long long){value});"
         return f"ais_json_int(j, {key}, (long long){value});"
 
     def _group(self, g: PayloadGroup, following: list) -> None:
@@ -158,7 +160,7 @@ class _Record:
             writes.append((case, " ".join(inner.write)))
         selector = f"m->{member_name(by)}"
         guard = "" if member_name(by) in self.certain else f"m->has_{member_name(by)} && "
-        if self.entry:  # its selector, a field of the entry, is read already
+        if self.entry or read_before(c, member_name(by), self.certain):  # its selector is read already
             self.read.append(f"{{ uint64_t selector = (uint64_t){selector}; {_if_chain(reads, 'selector', '')} }}")
         else:
             self.read.append(f"if (!ais_peek(r, {by.offset}, {by.bits}, {_c_str(by.id)}, &selector)) "

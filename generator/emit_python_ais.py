@@ -128,8 +128,8 @@ def member(f: PayloadField) -> dict:
 def title(payload: Payload) -> str:
     """What a message is: its name and its type numbers, or (an application) its DAC and FI."""
     if payload.application is not None:
-        fid = payload.application[1]
-        return f"{payload.name}: AIS application DAC {payload.dac_text} FI {fid} (in type {', '.join(map(str, payload.carriers))})."
+        routes = " or ".join(f"{r.text} (in type {', '.join(map(str, r.carriers))})" for r in payload.routes)
+        return f"{payload.name}: AIS application {routes}."
     numbers = ", ".join(map(str, payload.types))
     return f"{payload.name}: AIS message type{'s' if len(payload.types) > 1 else ''} {numbers}."
 
@@ -161,7 +161,8 @@ def message_view(payload: Payload) -> dict:
         "doc": _doc_lines(payload),
         "types": f"({types},)" if len(payload.types) == 1 else f"({types})",
         "title": title(payload),
-        "carriers": ", ".join(map(str, payload.carriers)) + ("," if len(payload.carriers) == 1 else ""),
+        "carriers": ", ".join(f"{key}: ({', '.join(map(str, payload.carriers_of(key)))}{',' if len(payload.carriers_of(key)) == 1 else ''})"
+                              for key in payload.keys),
         "layout": layout_lines(payload, payload.items, [], 8),
         "raws": [{"name": f.id, "doc": docstring(f"The raw integer of {f.id}.", 8)}
                  for f in payload.fields if f.scaled],

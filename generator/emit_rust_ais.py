@@ -207,7 +207,7 @@ class _Record:
         if not any(case.is_default for case in c.cases):
             reads.append("_ => {}")
             writes.append("_ => {}")
-        if self.entry:  # its selector, a field of the entry, is read already
+        if self.entry or read_before(c, member_name(by), self.certain):  # its selector is read already
             raw = f"m.{member_name(by)}"
             self.read.append(f"match {raw if plain_type(by) == 'u64' else f'u64::from({raw})'} {{ {' '.join(reads)} }}")
         else:
@@ -219,6 +219,14 @@ class _Record:
             selector = f"{selector}.map(u64::from)"
             writes = [w if w.startswith("_") else f"Some({w.split(' => ', 1)[0]}) => {w.split(' => ', 1)[1]}" for w in writes]
         self.write.append(f"match {selector} {{ {' '.join(writes)} }}")
+
+
+def read_before(c: PayloadChoice, member: str, certain: set[str]) -> bool:
+    """Whether a top-level choice's selector is a field read before it, always present (then its
+    value picks the case; otherwise the choice peeks at its bits in the message, which an
+    application's reader cannot: A007 has an application's selector before its choice)."""
+    assert c.selector is not None and c.selector.offset is not None
+    return member in certain and (c.offset is None or c.selector.offset < c.offset)
 
 
 def _labelled(label: str, lines: list[str], used: bool) -> str:

@@ -8,14 +8,14 @@ import datetime
 import hashlib
 import json
 import struct
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any, Callable
 
 import jinja2
 
 from . import reference, reference_ais, reference_binary, reference_rtcm3
-from .model import Payload, PayloadCase, PayloadChoice, PayloadField, PayloadGroup, Spec
+from .model import Payload, PayloadCase, PayloadChoice, PayloadField, PayloadGroup, PayloadItem, Spec
 
 
 # One render pass decodes every example once: each emitter that shows the examples asks for them,
@@ -244,11 +244,12 @@ def _pattern_bits(seed: str) -> Iterator[str]:
         block += 1
 
 
-def built_application(spec: Spec, application: Payload, dac_value: int) -> tuple[str, int]:
-    """A payload built from an application's layout (armored text, fill bits), for a DAC of it no
-    public capture shows: the first message type that carries it, DAC `dac_value` and its FI, every
-    field's bits drawn from a fixed sequence seeded by the application's id (an enum's: its first
-    code; spare bits: 0; a field of the bits left: 48 of them), every group full."""
+def built_application(spec: Spec, application: Payload, key: tuple[int, int],
+                      message_type: int | None = None) -> tuple[str, int]:
+    """A payload built from an application's layout (armored text, fill bits), for a DAC and FI of it
+    (`key`) no public capture shows: the first message type that carries it so (or `message_type`),
+    that DAC and FI, every field's bits drawn from a fixed sequence seeded by the application's id (an
+    enum's: its first code; spare bits: 0; a field of the bits left: 48 of them), every group full."""
     draw = _pattern_bits(application.id)
 
     def bits_of(f: PayloadField) -> str:
@@ -259,17 +260,20 @@ def built_application(spec: Spec, application: Payload, dac_value: int) -> tuple
             return f"{int(f.enum.values[0].code):0{width}b}"
         return "".join(next(draw) for _ in range(width))
 
-    def entry_bits(group: PayloadGroup, k: int) -> str:
-        """Entry k of a group: a choice of the entry takes its k-th named case in turn, its
-        selector that case's first value."""
+    def items_bits(items: Sequence[PayloadItem], k: int) -> str:
+        """The bits of `items` (an application's, a group entry's): a choice takes its k-th named
+        case in turn (entry k of a group; the first at the top), its selector that case's first
+        value; a group is full."""
         cases: dict[str, tuple[PayloadCase, int]] = {}
-        for choice in group.choices:
+        for choice in (i for i in items if isinstance(i, PayloadChoice)):
             named = [c for c in choice.cases if not c.is_default]
             case = named[k % len(named)]
             cases[choice.by] = case, case.values[0] if case.values else case.range[0]  # type: ignore[index]
         bits = ""
-        for part in group.items:
-            if isinstance(part, PayloadChoice):
+        for part in items:
+            if isinstance(part, PayloadGroup):
+                bits += "".join(items_bits(part.items, j) for j in range(part.max))
+            elif isinstance(part, PayloadChoice):
                 bits += "".join(bits_of(f) for f in cases[part.by][0].fields)
             elif part.id in cases:
                 bits += f"{cases[part.id][1]:0{part.bits}b}"
@@ -277,18 +281,12 @@ def built_application(spec: Spec, application: Payload, dac_value: int) -> tuple
                 bits += bits_of(part)
         return bits
 
-    data = ""
-    for item in application.items:
-        if isinstance(item, PayloadGroup):
-            data += "".join(entry_bits(item, k) for k in range(item.max))
-        else:
-            assert isinstance(item, PayloadField), f"{application.id}: a built payload has no choices"
-            data += bits_of(item)
-    assert application.application is not None
-    carrier = reference_ais.payload_of(spec, application.carriers[0])
+    data = items_bits(application.items, 0)
+    message_type = application.carriers_of(key)[0] if message_type is None else message_type
+    carrier = reference_ais.payload_of(spec, message_type)
     assert carrier is not None and carrier.data_field is not None
     dac, fid = carrier.data_field.dispatch
-    fixed = {"message_type": application.carriers[0], dac: dac_value, fid: application.application[1]}
+    fixed = {"message_type": message_type, dac: key[0], fid: key[1]}
     bits = ""
     for item in carrier.items:
         assert isinstance(item, PayloadField) and item.bits is not None or item is carrier.data_field
@@ -315,12 +313,20 @@ def ais_vectors(spec: Spec) -> list[dict]:
                         "decode": reference_ais.decode(spec, e.payload, e.fill_bits)})
         shown = {(out[-1 - i]["decode"].get("dac"), out[-1 - i]["decode"].get("fid")) for i in range(len(payload.examples))}
         for dac, fid in (k for k in payload.keys if k not in shown):   # a DAC no example shows
-            text, fill_bits = built_application(spec, payload, dac)
+            text, fill_bits = built_application(spec, payload, (dac, fid))
             decoded = reference_ais.decode(spec, text, fill_bits)
             assert decoded.get("application", {}).get("trailing") == "", f"{payload.id}: the built payload is not it"
             out.append({"message": payload.id, "where": f"built from the layout of {payload.id}, DAC {dac} FI {fid} "
                         "(no public capture): fields from a fixed pseudo-random sequence, groups full", "payload": text,
                         "fill_bits": fill_bits, "decode": decoded})
+        for dac, fid in payload.keys:   # a DAC and FI in a message type that carries the layout under another
+            for message_type in (t for t in payload.carriers if t not in payload.carriers_of((dac, fid))):
+                text, fill_bits = built_application(spec, payload, (dac, fid), message_type)
+                decoded = reference_ais.decode(spec, text, fill_bits)
+                assert "application" not in decoded, f"{payload.id}: DAC {dac} FI {fid} read in type {message_type}"
+                out.append({"message": None, "where": f"the layout of {payload.id} as DAC {dac} FI {fid} in type "
+                            f"{message_type}, which does not carry it so: its data stay data", "payload": text,
+                            "fill_bits": fill_bits, "decode": decoded})
     for text, fill_bits, where in AIS_ERROR_PAYLOADS:
         record: dict = {"message": None, "where": where, "payload": text, "fill_bits": fill_bits}
         try:

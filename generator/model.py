@@ -853,6 +853,25 @@ class PayloadExample:
 
 
 @dataclass
+class Route:
+    """One way an application message is sent: the DACs and FI its carriers' data carry it under,
+    and those message types (a layout several DAC/FIs share has one route each)."""
+    dacs: list[int]
+    fid: int
+    carriers: list[int]
+
+    @property
+    def keys(self) -> list[tuple[int, int]]:
+        """Its (DAC, FI) pairs."""
+        return [(dac, self.fid) for dac in self.dacs]
+
+    @property
+    def text(self) -> str:
+        """As the docs name it: "DAC 235 or 250 FI 10"."""
+        return f"DAC {' or '.join(map(str, self.dacs))} FI {self.fid}"
+
+
+@dataclass
 class Payload:
     """One bit-packed message layout (spec/ais/messages): the message types it describes and its
     fields."""
@@ -868,8 +887,7 @@ class Payload:
     origin: Origin
     protocol: str = "ais"
     application: tuple[int, int] | None = None   # an application message: its (first) DAC and FI
-    dacs: list[int] = field(default_factory=list)   # ... every DAC it is sent under (a layout several share)
-    carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
+    routes: list[Route] = field(default_factory=list)   # ... every DAC, FI and message type it is sent under
     applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
     directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
     select: tuple[str, int] | None = None   # a binary layout told apart by a u1 field's value: (field id, value)
@@ -892,13 +910,23 @@ class Payload:
 
     @property
     def keys(self) -> list[tuple[int, int]]:
-        """An application's (DAC, FI) pairs: one per DAC it is sent under."""
-        return [] if self.application is None else [(dac, self.application[1]) for dac in self.dacs]
+        """An application's (DAC, FI) pairs: one per DAC and FI it is sent under."""
+        return [key for route in self.routes for key in route.keys]
 
     @property
-    def dac_text(self) -> str:
-        """An application's DACs as the docs name them: "235" or "235 or 250"."""
-        return " or ".join(map(str, self.dacs))
+    def carriers(self) -> list[int]:
+        """The message types whose data carry an application, under one of its DAC/FIs or another."""
+        return sorted({t for route in self.routes for t in route.carriers})
+
+    def carriers_of(self, key: tuple[int, int]) -> list[int]:
+        """The message types whose data carry an application under a (DAC, FI) of it."""
+        return next((route.carriers for route in self.routes if key in route.keys), [])
+
+    @property
+    def routes_text(self) -> str:
+        """An application's DAC/FIs as the docs name them: "DAC 235 or 250 FI 10", "DAC 1 FI 22 or
+        DAC 1 FI 23"."""
+        return " or ".join(route.text for route in self.routes)
 
     @property
     def data_field(self) -> PayloadField | None:

@@ -155,7 +155,7 @@ def _application(message: Payload, out: dict[str, Any]) -> dict[str, Any] | None
         return None
     key = tuple(out.get(name) for name in data.dispatch)
     application = next((a for a in message.applications
-                        if key in a.keys and out["message_type"] in a.carriers), None)
+                        if out["message_type"] in a.carriers_of(key)), None)
     if application is None:
         return None
     bits = _Bits(out[data.id], application)

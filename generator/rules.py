@@ -212,8 +212,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Make the later fields optional, or the earlier one required."),
     Rule("A007", "a choice finds its selector",
          "A choice's `by` names a top-level uint, bool or enum field (its raw value unsigned) at a fixed bit offset "
-         "(when it follows the choice, the cases have one width); its `when` and `range` values are raw values of "
-         "it; at most one case has neither.",
+         "(when it follows the choice, the cases have one width; an application's choice follows it, a required "
+         "field); its `when` and `range` values are raw values of it; at most one case has neither.",
          "Correct `by`, the cases' values or their widths."),
     Rule("A008", "message types are described once",
          "Each message type number belongs to one message file, each DAC and FI to one application file.",

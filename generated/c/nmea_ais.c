@@ -12,17 +12,23 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
-//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
-//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/air_draught.yaml, spec/ais/applications/area_notice.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/berthing_data.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo.yaml,
+//   spec/ais/applications/dangerous_cargo_imo236.yaml, spec/ais/applications/environmental.yaml,
+//   spec/ais/applications/fairway_closed.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_emma_warning.yaml, spec/ais/applications/inland_eta.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml, spec/ais/applications/inland_rta.yaml,
+//   spec/ais/applications/inland_signal_status.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
 //   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
-//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
-//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
-//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest 6165804f4832f212)
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/route_information.yaml,
+//   spec/ais/applications/ship_static_voyage.yaml, spec/ais/applications/ship_weather.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml,
+//   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
+//   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
+//   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
+//   (digest de390e318a701e9b)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -350,9 +356,21 @@ static void ais_json_key(nmea_ais_json_out *j, const char *name)
     ais_json_puts(j, "\":");
 }
 
+/* An unsigned field's value: all 64 bits of one (a spare of 64 bits) are more than a long long holds. */
+static void ais_json_uint(nmea_ais_json_out *j, const char *name, unsigned long long value)
+{
+    char text[24];
+    ais_json_key(j, name);
+    ais_json_put(j, text, (size_t)snprintf(text, sizeof text, "%llu", value));
+}
+
 static void ais_json_int(nmea_ais_json_out *j, const char *name, long long value)
 {
     char text[24];
+    if (value >= 0) {
+        ais_json_uint(j, name, (unsigned long long)value);
+        return;
+    }
     ais_json_key(j, name);
     ais_json_put(j, text, (size_t)snprintf(text, sizeof text, "%lld", value));
 }
@@ -1349,6 +1367,33 @@ static const char *ais_vsd_nav_status_id(uint64_t code)
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w);
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j);
 
+static const nmea_ais_special ais_air_draught_air_draught_specials[] = {{0, "not_available"}};
+static bool ais_read_air_draught(nmea_ais_reader *r, nmea_ais_air_draught *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 11, "air_draught", &raw)) return false;
+    m->air_draught_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_air_draught(const nmea_ais_air_draught *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->air_draught_raw, 11, "air_draught")) return false;
+    if (!ais_put(w, m->spare, 5, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_air_draught(const nmea_ais_air_draught *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "air_draught", (int64_t)m->air_draught_raw, 10.0, 0.0, true, ais_air_draught_air_draught_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_area_notice_subarea_lon_specials[] = {{10860000, "not_available"}};
 static const nmea_ais_special ais_area_notice_subarea_lat_specials[] = {{5460000, "not_available"}};
 static const nmea_ais_special ais_area_notice_subarea_rect_lon_specials[] = {{10860000, "not_available"}};
@@ -1793,6 +1838,84 @@ static void ais_json_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_berthing_data_berth_length_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_berthing_data_berth_depth_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_berthing_data_position_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_berthing_data_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_berthing_data_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_berthing_data_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_berthing_data_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_berthing_data_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_berthing_data_lat_specials[] = {{5460000, "not_available"}};
+static bool ais_read_berthing_data(nmea_ais_reader *r, nmea_ais_berthing_data *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take(r, 9, "berth_length", &raw)) return false;
+    m->berth_length_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "berth_depth", &raw)) return false;
+    m->berth_depth_raw = (uint8_t)raw;
+    if (!ais_take(r, 3, "position", &raw)) return false;
+    m->position_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "services_known", &raw)) return false;
+    m->services_known = raw == 1;
+    if (!ais_take_bits(r, 52, "services", &m->services)) return false;
+    if (!ais_take_bits(r, 120, "berth_name", &m->berth_name)) return false;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_berthing_data(const nmea_ais_berthing_data *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put(w, m->berth_length_raw, 9, "berth_length")) return false;
+    if (!ais_put(w, m->berth_depth_raw, 8, "berth_depth")) return false;
+    if (!ais_put(w, m->position_raw, 3, "position")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->services_known, 1, "services_known")) return false;
+    if (!ais_put_fixed(w, m->services, 52, false, "services")) return false;
+    if (!ais_put_fixed(w, m->berth_name, 120, true, "berth_name")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_berthing_data(const nmea_ais_berthing_data *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_reading(j, "berth_length", (int64_t)m->berth_length_raw, 1.0, 0.0, false, ais_berthing_data_berth_length_specials, 1);
+    ais_json_reading(j, "berth_depth", (int64_t)m->berth_depth_raw, 10.0, 0.0, true, ais_berthing_data_berth_depth_specials, 1);
+    ais_json_reading(j, "position", (int64_t)m->position_raw, 1.0, 0.0, false, ais_berthing_data_position_specials, 1);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_berthing_data_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_berthing_data_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_berthing_data_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_berthing_data_minute_specials, 1);
+    ais_json_flag(j, "services_known", m->services_known);
+    ais_json_bits(j, "services", m->services);
+    ais_json_text(j, "berth_name", m->berth_name);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_berthing_data_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_berthing_data_lat_specials, 1);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_clearance_time_linkage_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_clearance_time_month_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_clearance_time_day_specials[] = {{0, "not_available"}};
@@ -1853,7 +1976,190 @@ static void ais_json_clearance_time(const nmea_ais_clearance_time *m, nmea_ais_j
     ais_json_text(j, "destination", m->destination);
     ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_clearance_time_lon_specials, 1);
     ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_clearance_time_lat_specials, 1);
-    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_uint(j, "spare", (unsigned long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_dangerous_cargo_cargo_code_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_imdg_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_un_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_bc_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_bc_imdg_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_oil_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_cargo_category_specials[] = {{0, "not_available"}};
+static bool ais_read_dangerous_cargo_cargo(nmea_ais_reader *r, nmea_ais_dangerous_cargo_cargo *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 4, "code", &raw)) return false;
+    m->code_raw = (uint8_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->code_raw;
+        if (selector == 1u) {
+            if (!ais_take(r, 7, "imdg", &raw)) return false;
+            m->imdg_raw = (uint8_t)raw;
+            m->has_imdg_raw = true;
+            if (!ais_take(r, 6, "imdg_spare", &raw)) return false;
+            m->imdg_spare = (uint8_t)raw;
+            m->has_imdg_spare = true;
+        } else if (selector == 2u) {
+            if (!ais_take(r, 13, "un", &raw)) return false;
+            m->un_raw = (uint16_t)raw;
+            m->has_un_raw = true;
+        } else if (selector == 3u) {
+            if (!ais_take(r, 3, "bc", &raw)) return false;
+            m->bc_raw = (uint8_t)raw;
+            m->has_bc_raw = true;
+            if (!ais_take(r, 7, "bc_imdg", &raw)) return false;
+            m->bc_imdg_raw = (uint8_t)raw;
+            m->has_bc_imdg_raw = true;
+            if (!ais_take(r, 3, "bc_spare", &raw)) return false;
+            m->bc_spare = (uint8_t)raw;
+            m->has_bc_spare = true;
+        } else if (selector == 4u) {
+            if (!ais_take(r, 4, "oil", &raw)) return false;
+            m->oil_raw = (uint8_t)raw;
+            m->has_oil_raw = true;
+            if (!ais_take(r, 9, "oil_spare", &raw)) return false;
+            m->oil_spare = (uint16_t)raw;
+            m->has_oil_spare = true;
+        } else if (selector == 5u) {
+            if (!ais_take(r, 3, "category", &raw)) return false;
+            m->category_raw = (uint8_t)raw;
+            m->has_category_raw = true;
+            if (!ais_take(r, 10, "category_spare", &raw)) return false;
+            m->category_spare = (uint16_t)raw;
+            m->has_category_spare = true;
+        } else {
+            if (!ais_take_bits(r, 13, "reserved", &m->reserved)) return false;
+            m->has_reserved = true;
+        }
+    }
+    return true;
+}
+
+static bool ais_write_dangerous_cargo_cargo(const nmea_ais_dangerous_cargo_cargo *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->code_raw, 4, "code")) return false;
+    {
+        uint64_t selector = (uint64_t)m->code_raw;
+        if (selector == 1u) {
+            if (!m->has_imdg_raw) goto done;
+            if (!ais_put(w, m->imdg_raw, 7, "imdg")) return false;
+            if (!m->has_imdg_spare) goto done;
+            if (!ais_put(w, m->imdg_spare, 6, "imdg_spare")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_un_raw) goto done;
+            if (!ais_put(w, m->un_raw, 13, "un")) return false;
+        } else if (selector == 3u) {
+            if (!m->has_bc_raw) goto done;
+            if (!ais_put(w, m->bc_raw, 3, "bc")) return false;
+            if (!m->has_bc_imdg_raw) goto done;
+            if (!ais_put(w, m->bc_imdg_raw, 7, "bc_imdg")) return false;
+            if (!m->has_bc_spare) goto done;
+            if (!ais_put(w, m->bc_spare, 3, "bc_spare")) return false;
+        } else if (selector == 4u) {
+            if (!m->has_oil_raw) goto done;
+            if (!ais_put(w, m->oil_raw, 4, "oil")) return false;
+            if (!m->has_oil_spare) goto done;
+            if (!ais_put(w, m->oil_spare, 9, "oil_spare")) return false;
+        } else if (selector == 5u) {
+            if (!m->has_category_raw) goto done;
+            if (!ais_put(w, m->category_raw, 3, "category")) return false;
+            if (!m->has_category_spare) goto done;
+            if (!ais_put(w, m->category_spare, 10, "category_spare")) return false;
+        } else {
+            if (!m->has_reserved) goto done;
+            if (!ais_put_fixed(w, m->reserved, 13, false, "reserved")) return false;
+        }
+    }
+    done:;
+    return true;
+}
+
+static void ais_json_dangerous_cargo_cargo(const nmea_ais_dangerous_cargo_cargo *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "code", (int64_t)m->code_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_code_specials, 1);
+    if (m->has_imdg_raw) {
+        ais_json_reading(j, "imdg", (int64_t)m->imdg_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_imdg_specials, 1);
+    }
+    if (m->has_imdg_spare) {
+        ais_json_int(j, "imdg_spare", (long long)m->imdg_spare);
+    }
+    if (m->has_un_raw) {
+        ais_json_reading(j, "un", (int64_t)m->un_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_un_specials, 1);
+    }
+    if (m->has_bc_raw) {
+        ais_json_reading(j, "bc", (int64_t)m->bc_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_bc_specials, 1);
+    }
+    if (m->has_bc_imdg_raw) {
+        ais_json_reading(j, "bc_imdg", (int64_t)m->bc_imdg_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_bc_imdg_specials, 1);
+    }
+    if (m->has_bc_spare) {
+        ais_json_int(j, "bc_spare", (long long)m->bc_spare);
+    }
+    if (m->has_oil_raw) {
+        ais_json_reading(j, "oil", (int64_t)m->oil_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_oil_specials, 1);
+    }
+    if (m->has_oil_spare) {
+        ais_json_int(j, "oil_spare", (long long)m->oil_spare);
+    }
+    if (m->has_category_raw) {
+        ais_json_reading(j, "category", (int64_t)m->category_raw, 1.0, 0.0, false, ais_dangerous_cargo_cargo_category_specials, 1);
+    }
+    if (m->has_category_spare) {
+        ais_json_int(j, "category_spare", (long long)m->category_spare);
+    }
+    if (m->has_reserved) {
+        ais_json_bits(j, "reserved", m->reserved);
+    }
+}
+
+static const nmea_ais_special ais_dangerous_cargo_unit_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_amount_specials[] = {{0, "not_available"}};
+static bool ais_read_dangerous_cargo(nmea_ais_reader *r, nmea_ais_dangerous_cargo *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 2, "unit", &raw)) return false;
+    m->unit_raw = (uint8_t)raw;
+    if (!ais_take(r, 10, "amount", &raw)) return false;
+    m->amount_raw = (uint16_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 0, 28, 17, 0, "cargos", &m->cargos_count)) return false;
+        for (i = 0; i < m->cargos_count; i++) if (!ais_read_dangerous_cargo_cargo(r, &m->cargos[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_dangerous_cargo(const nmea_ais_dangerous_cargo *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->unit_raw, 2, "unit")) return false;
+    if (!ais_put(w, m->amount_raw, 10, "amount")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->cargos_count; i++) if (!ais_write_dangerous_cargo_cargo(&m->cargos[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_dangerous_cargo(const nmea_ais_dangerous_cargo *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "unit", (int64_t)m->unit_raw, 1.0, 0.0, false, ais_dangerous_cargo_unit_specials, 1);
+    ais_json_reading(j, "amount", (int64_t)m->amount_raw, 1.0, 0.0, false, ais_dangerous_cargo_amount_specials, 1);
+    {
+        size_t i;
+        ais_json_key(j, "cargos");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->cargos_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_dangerous_cargo_cargo(&m->cargos[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -2868,7 +3174,7 @@ static void ais_json_environmental_report(const nmea_ais_environmental_report *m
         ais_json_code(j, "salinity_sensor", ais_ais_sensor_description_id(m->salinity_sensor_raw), m->salinity_sensor_raw);
     }
     if (m->has_salinity_spare) {
-        ais_json_int(j, "salinity_spare", (long long)m->salinity_spare);
+        ais_json_uint(j, "salinity_spare", (unsigned long long)m->salinity_spare);
     }
     if (m->has_air_temp_raw) {
         ais_json_reading(j, "air_temp", (int64_t)m->air_temp_raw, 10.0, 0.0, true, ais_environmental_report_air_temp_specials, 1);
@@ -2970,6 +3276,85 @@ static void ais_json_environmental(const nmea_ais_environmental *m, nmea_ais_jso
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_fairway_closed_from_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_from_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_from_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_from_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_to_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_to_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_to_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_fairway_closed_to_minute_specials[] = {{60, "not_available"}};
+static bool ais_read_fairway_closed(nmea_ais_reader *r, nmea_ais_fairway_closed *m)
+{
+    uint64_t raw;
+    if (!ais_take_bits(r, 120, "reason", &m->reason)) return false;
+    if (!ais_take_bits(r, 120, "closed_from", &m->closed_from)) return false;
+    if (!ais_take_bits(r, 120, "closed_to", &m->closed_to)) return false;
+    if (!ais_take(r, 10, "radius", &raw)) return false;
+    m->radius = (uint16_t)raw;
+    if (!ais_take(r, 2, "extension_unit", &raw)) return false;
+    m->extension_unit = (uint8_t)raw;
+    if (!ais_take(r, 5, "from_day", &raw)) return false;
+    m->from_day_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "from_month", &raw)) return false;
+    m->from_month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "from_hour", &raw)) return false;
+    m->from_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "from_minute", &raw)) return false;
+    m->from_minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "to_day", &raw)) return false;
+    m->to_day_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "to_month", &raw)) return false;
+    m->to_month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "to_hour", &raw)) return false;
+    m->to_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_minute", &raw)) return false;
+    m->to_minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_fairway_closed(const nmea_ais_fairway_closed *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->reason, 120, true, "reason")) return false;
+    if (!ais_put_fixed(w, m->closed_from, 120, true, "closed_from")) return false;
+    if (!ais_put_fixed(w, m->closed_to, 120, true, "closed_to")) return false;
+    if (!ais_put(w, m->radius, 10, "radius")) return false;
+    if (!ais_put(w, m->extension_unit, 2, "extension_unit")) return false;
+    if (!ais_put(w, m->from_day_raw, 5, "from_day")) return false;
+    if (!ais_put(w, m->from_month_raw, 4, "from_month")) return false;
+    if (!ais_put(w, m->from_hour_raw, 5, "from_hour")) return false;
+    if (!ais_put(w, m->from_minute_raw, 6, "from_minute")) return false;
+    if (!ais_put(w, m->to_day_raw, 5, "to_day")) return false;
+    if (!ais_put(w, m->to_month_raw, 4, "to_month")) return false;
+    if (!ais_put(w, m->to_hour_raw, 5, "to_hour")) return false;
+    if (!ais_put(w, m->to_minute_raw, 6, "to_minute")) return false;
+    if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_fairway_closed(const nmea_ais_fairway_closed *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "reason", m->reason);
+    ais_json_text(j, "closed_from", m->closed_from);
+    ais_json_text(j, "closed_to", m->closed_to);
+    ais_json_int(j, "radius", (long long)m->radius);
+    ais_json_int(j, "extension_unit", (long long)m->extension_unit);
+    ais_json_reading(j, "from_day", (int64_t)m->from_day_raw, 1.0, 0.0, false, ais_fairway_closed_from_day_specials, 1);
+    ais_json_reading(j, "from_month", (int64_t)m->from_month_raw, 1.0, 0.0, false, ais_fairway_closed_from_month_specials, 1);
+    ais_json_reading(j, "from_hour", (int64_t)m->from_hour_raw, 1.0, 0.0, false, ais_fairway_closed_from_hour_specials, 1);
+    ais_json_reading(j, "from_minute", (int64_t)m->from_minute_raw, 1.0, 0.0, false, ais_fairway_closed_from_minute_specials, 1);
+    ais_json_reading(j, "to_day", (int64_t)m->to_day_raw, 1.0, 0.0, false, ais_fairway_closed_to_day_specials, 1);
+    ais_json_reading(j, "to_month", (int64_t)m->to_month_raw, 1.0, 0.0, false, ais_fairway_closed_to_month_specials, 1);
+    ais_json_reading(j, "to_hour", (int64_t)m->to_hour_raw, 1.0, 0.0, false, ais_fairway_closed_to_hour_specials, 1);
+    ais_json_reading(j, "to_minute", (int64_t)m->to_minute_raw, 1.0, 0.0, false, ais_fairway_closed_to_minute_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static bool ais_read_function_interrogation(nmea_ais_reader *r, nmea_ais_function_interrogation *m)
 {
     uint64_t raw;
@@ -2993,6 +3378,122 @@ static void ais_json_function_interrogation(const nmea_ais_function_interrogatio
 {
     ais_json_int(j, "req_dac", (long long)m->req_dac);
     ais_json_int(j, "req_fid", (long long)m->req_fid);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_inland_emma_warning_start_year_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_year_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_start_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_end_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_weather_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_intensity_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_emma_warning_wind_direction_specials[] = {{0, "not_available"}};
+static bool ais_read_inland_emma_warning(nmea_ais_reader *r, nmea_ais_inland_emma_warning *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 8, "start_year", &raw)) return false;
+    m->start_year_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "start_month", &raw)) return false;
+    m->start_month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "start_day", &raw)) return false;
+    m->start_day_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "end_year", &raw)) return false;
+    m->end_year_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "end_month", &raw)) return false;
+    m->end_month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "end_day", &raw)) return false;
+    m->end_day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "start_hour", &raw)) return false;
+    m->start_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "start_minute", &raw)) return false;
+    m->start_minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "end_hour", &raw)) return false;
+    m->end_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "end_minute", &raw)) return false;
+    m->end_minute_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 28, "start_lon", &signed_raw)) return false;
+    m->start_lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "start_lat", &signed_raw)) return false;
+    m->start_lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 28, "end_lon", &signed_raw)) return false;
+    m->end_lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "end_lat", &signed_raw)) return false;
+    m->end_lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 4, "weather", &raw)) return false;
+    m->weather_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 9, "min_value", &signed_raw)) return false;
+    m->min_value = (int16_t)signed_raw;
+    if (!ais_take_signed(r, 9, "max_value", &signed_raw)) return false;
+    m->max_value = (int16_t)signed_raw;
+    if (!ais_take(r, 2, "intensity", &raw)) return false;
+    m->intensity_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "wind_direction", &raw)) return false;
+    m->wind_direction_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_emma_warning(const nmea_ais_inland_emma_warning *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->start_year_raw, 8, "start_year")) return false;
+    if (!ais_put(w, m->start_month_raw, 4, "start_month")) return false;
+    if (!ais_put(w, m->start_day_raw, 5, "start_day")) return false;
+    if (!ais_put(w, m->end_year_raw, 8, "end_year")) return false;
+    if (!ais_put(w, m->end_month_raw, 4, "end_month")) return false;
+    if (!ais_put(w, m->end_day_raw, 5, "end_day")) return false;
+    if (!ais_put(w, m->start_hour_raw, 5, "start_hour")) return false;
+    if (!ais_put(w, m->start_minute_raw, 6, "start_minute")) return false;
+    if (!ais_put(w, m->end_hour_raw, 5, "end_hour")) return false;
+    if (!ais_put(w, m->end_minute_raw, 6, "end_minute")) return false;
+    if (!ais_put_signed(w, m->start_lon_raw, 28, "start_lon")) return false;
+    if (!ais_put_signed(w, m->start_lat_raw, 27, "start_lat")) return false;
+    if (!ais_put_signed(w, m->end_lon_raw, 28, "end_lon")) return false;
+    if (!ais_put_signed(w, m->end_lat_raw, 27, "end_lat")) return false;
+    if (!ais_put(w, m->weather_raw, 4, "weather")) return false;
+    if (!ais_put_signed(w, m->min_value, 9, "min_value")) return false;
+    if (!ais_put_signed(w, m->max_value, 9, "max_value")) return false;
+    if (!ais_put(w, m->intensity_raw, 2, "intensity")) return false;
+    if (!ais_put(w, m->wind_direction_raw, 4, "wind_direction")) return false;
+    if (!ais_put(w, m->spare, 6, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_emma_warning(const nmea_ais_inland_emma_warning *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "start_year", (int64_t)m->start_year_raw, 1.0, 0.0, false, ais_inland_emma_warning_start_year_specials, 1);
+    ais_json_reading(j, "start_month", (int64_t)m->start_month_raw, 1.0, 0.0, false, ais_inland_emma_warning_start_month_specials, 1);
+    ais_json_reading(j, "start_day", (int64_t)m->start_day_raw, 1.0, 0.0, false, ais_inland_emma_warning_start_day_specials, 1);
+    ais_json_reading(j, "end_year", (int64_t)m->end_year_raw, 1.0, 0.0, false, ais_inland_emma_warning_end_year_specials, 1);
+    ais_json_reading(j, "end_month", (int64_t)m->end_month_raw, 1.0, 0.0, false, ais_inland_emma_warning_end_month_specials, 1);
+    ais_json_reading(j, "end_day", (int64_t)m->end_day_raw, 1.0, 0.0, false, ais_inland_emma_warning_end_day_specials, 1);
+    ais_json_reading(j, "start_hour", (int64_t)m->start_hour_raw, 1.0, 0.0, false, ais_inland_emma_warning_start_hour_specials, 1);
+    ais_json_reading(j, "start_minute", (int64_t)m->start_minute_raw, 1.0, 0.0, false, ais_inland_emma_warning_start_minute_specials, 1);
+    ais_json_reading(j, "end_hour", (int64_t)m->end_hour_raw, 1.0, 0.0, false, ais_inland_emma_warning_end_hour_specials, 1);
+    ais_json_reading(j, "end_minute", (int64_t)m->end_minute_raw, 1.0, 0.0, false, ais_inland_emma_warning_end_minute_specials, 1);
+    ais_json_reading(j, "start_lon", (int64_t)m->start_lon_raw, 600000.0, 0.0, true, ais_inland_emma_warning_start_lon_specials, 1);
+    ais_json_reading(j, "start_lat", (int64_t)m->start_lat_raw, 600000.0, 0.0, true, ais_inland_emma_warning_start_lat_specials, 1);
+    ais_json_reading(j, "end_lon", (int64_t)m->end_lon_raw, 600000.0, 0.0, true, ais_inland_emma_warning_end_lon_specials, 1);
+    ais_json_reading(j, "end_lat", (int64_t)m->end_lat_raw, 600000.0, 0.0, true, ais_inland_emma_warning_end_lat_specials, 1);
+    ais_json_reading(j, "weather", (int64_t)m->weather_raw, 1.0, 0.0, false, ais_inland_emma_warning_weather_specials, 1);
+    ais_json_int(j, "min_value", (long long)m->min_value);
+    ais_json_int(j, "max_value", (long long)m->max_value);
+    ais_json_reading(j, "intensity", (int64_t)m->intensity_raw, 1.0, 0.0, false, ais_inland_emma_warning_intensity_specials, 1);
+    ais_json_reading(j, "wind_direction", (int64_t)m->wind_direction_raw, 1.0, 0.0, false, ais_inland_emma_warning_wind_direction_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -3100,7 +3601,7 @@ static void ais_json_inland_persons_on_board(const nmea_ais_inland_persons_on_bo
     ais_json_reading(j, "passengers", (int64_t)m->passengers_raw, 1.0, 0.0, false, ais_inland_persons_on_board_passengers_specials, 1);
     ais_json_reading(j, "personnel", (int64_t)m->personnel_raw, 1.0, 0.0, false, ais_inland_persons_on_board_personnel_specials, 1);
     if (m->has_spare) {
-        ais_json_int(j, "spare", (long long)m->spare);
+        ais_json_uint(j, "spare", (unsigned long long)m->spare);
     }
     ais_json_bits(j, "trailing", m->trailing);
 }
@@ -3811,6 +4312,799 @@ static void ais_json_persons_on_board(const nmea_ais_persons_on_board *m, nmea_a
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_route_information_waypoint_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_route_information_waypoint_lat_specials[] = {{54600000, "not_available"}};
+static bool ais_read_route_information_waypoint(nmea_ais_reader *r, nmea_ais_route_information_waypoint *m)
+{
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    return true;
+}
+
+static bool ais_write_route_information_waypoint(const nmea_ais_route_information_waypoint *m, nmea_ais_writer *w)
+{
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    return true;
+}
+
+static void ais_json_route_information_waypoint(const nmea_ais_route_information_waypoint *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_route_information_waypoint_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_route_information_waypoint_lat_specials, 1);
+}
+
+static const nmea_ais_special ais_route_information_route_type_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_route_information_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_route_information_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_route_information_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_route_information_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_route_information_duration_specials[] = {{262143, "not_available"}};
+static bool ais_read_route_information(nmea_ais_reader *r, nmea_ais_route_information *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take(r, 3, "sender", &raw)) return false;
+    m->sender = (uint8_t)raw;
+    if (!ais_take(r, 5, "route_type", &raw)) return false;
+    m->route_type_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 18, "duration", &raw)) return false;
+    m->duration_raw = (uint32_t)raw;
+    if (!ais_take(r, 5, "waypoint_count", &raw)) return false;
+    m->waypoint_count = (uint8_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 0, 16, 55, 0, "waypoints", &m->waypoints_count)) return false;
+        for (i = 0; i < m->waypoints_count; i++) if (!ais_read_route_information_waypoint(r, &m->waypoints[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_route_information(const nmea_ais_route_information *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put(w, m->sender, 3, "sender")) return false;
+    if (!ais_put(w, m->route_type_raw, 5, "route_type")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->duration_raw, 18, "duration")) return false;
+    if (!ais_put(w, m->waypoint_count, 5, "waypoint_count")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->waypoints_count; i++) if (!ais_write_route_information_waypoint(&m->waypoints[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_route_information(const nmea_ais_route_information *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_int(j, "sender", (long long)m->sender);
+    ais_json_reading(j, "route_type", (int64_t)m->route_type_raw, 1.0, 0.0, false, ais_route_information_route_type_specials, 1);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_route_information_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_route_information_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_route_information_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_route_information_minute_specials, 1);
+    ais_json_reading(j, "duration", (int64_t)m->duration_raw, 1.0, 0.0, false, ais_route_information_duration_specials, 1);
+    ais_json_int(j, "waypoint_count", (long long)m->waypoint_count);
+    {
+        size_t i;
+        ais_json_key(j, "waypoints");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->waypoints_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_route_information_waypoint(&m->waypoints[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_ship_static_voyage_air_draught_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_ice_class_specials[] = {{15, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_shaft_power_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_vhf_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_gross_tonnage_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_laden_ballast_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_heavy_oil_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_light_oil_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_diesel_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_bunker_oil_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_static_voyage_persons_specials[] = {{0, "not_available"}};
+static bool ais_read_ship_static_voyage(nmea_ais_reader *r, nmea_ais_ship_static_voyage *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take(r, 13, "air_draught", &raw)) return false;
+    m->air_draught_raw = (uint16_t)raw;
+    if (!ais_take_bits(r, 30, "last_port", &m->last_port)) return false;
+    if (!ais_take_bits(r, 30, "next_port1", &m->next_port1)) return false;
+    if (!ais_take_bits(r, 30, "next_port2", &m->next_port2)) return false;
+    if (!ais_take_bits(r, 52, "solas_status", &m->solas_status)) return false;
+    if (!ais_take(r, 4, "ice_class", &raw)) return false;
+    m->ice_class_raw = (uint8_t)raw;
+    if (!ais_take(r, 18, "shaft_power", &raw)) return false;
+    m->shaft_power_raw = (uint32_t)raw;
+    if (!ais_take(r, 12, "vhf", &raw)) return false;
+    m->vhf_raw = (uint16_t)raw;
+    if (!ais_take_bits(r, 42, "lloyds_ship_type", &m->lloyds_ship_type)) return false;
+    if (!ais_take(r, 18, "gross_tonnage", &raw)) return false;
+    m->gross_tonnage_raw = (uint32_t)raw;
+    if (!ais_take(r, 2, "laden_ballast", &raw)) return false;
+    m->laden_ballast_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "heavy_oil", &raw)) return false;
+    m->heavy_oil_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "light_oil", &raw)) return false;
+    m->light_oil_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "diesel", &raw)) return false;
+    m->diesel_raw = (uint8_t)raw;
+    if (!ais_take(r, 14, "bunker_oil", &raw)) return false;
+    m->bunker_oil_raw = (uint16_t)raw;
+    if (!ais_take(r, 13, "persons", &raw)) return false;
+    m->persons_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "spare", &raw)) return false;
+    m->spare = (uint16_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_ship_static_voyage(const nmea_ais_ship_static_voyage *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put(w, m->air_draught_raw, 13, "air_draught")) return false;
+    if (!ais_put_fixed(w, m->last_port, 30, true, "last_port")) return false;
+    if (!ais_put_fixed(w, m->next_port1, 30, true, "next_port1")) return false;
+    if (!ais_put_fixed(w, m->next_port2, 30, true, "next_port2")) return false;
+    if (!ais_put_fixed(w, m->solas_status, 52, false, "solas_status")) return false;
+    if (!ais_put(w, m->ice_class_raw, 4, "ice_class")) return false;
+    if (!ais_put(w, m->shaft_power_raw, 18, "shaft_power")) return false;
+    if (!ais_put(w, m->vhf_raw, 12, "vhf")) return false;
+    if (!ais_put_fixed(w, m->lloyds_ship_type, 42, true, "lloyds_ship_type")) return false;
+    if (!ais_put(w, m->gross_tonnage_raw, 18, "gross_tonnage")) return false;
+    if (!ais_put(w, m->laden_ballast_raw, 2, "laden_ballast")) return false;
+    if (!ais_put(w, m->heavy_oil_raw, 2, "heavy_oil")) return false;
+    if (!ais_put(w, m->light_oil_raw, 2, "light_oil")) return false;
+    if (!ais_put(w, m->diesel_raw, 2, "diesel")) return false;
+    if (!ais_put(w, m->bunker_oil_raw, 14, "bunker_oil")) return false;
+    if (!ais_put(w, m->persons_raw, 13, "persons")) return false;
+    if (!ais_put(w, m->spare, 10, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_ship_static_voyage(const nmea_ais_ship_static_voyage *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_reading(j, "air_draught", (int64_t)m->air_draught_raw, 10.0, 0.0, true, ais_ship_static_voyage_air_draught_specials, 1);
+    ais_json_text(j, "last_port", m->last_port);
+    ais_json_text(j, "next_port1", m->next_port1);
+    ais_json_text(j, "next_port2", m->next_port2);
+    ais_json_bits(j, "solas_status", m->solas_status);
+    ais_json_reading(j, "ice_class", (int64_t)m->ice_class_raw, 1.0, 0.0, false, ais_ship_static_voyage_ice_class_specials, 1);
+    ais_json_reading(j, "shaft_power", (int64_t)m->shaft_power_raw, 1.0, 0.0, false, ais_ship_static_voyage_shaft_power_specials, 1);
+    ais_json_reading(j, "vhf", (int64_t)m->vhf_raw, 1.0, 0.0, false, ais_ship_static_voyage_vhf_specials, 1);
+    ais_json_text(j, "lloyds_ship_type", m->lloyds_ship_type);
+    ais_json_reading(j, "gross_tonnage", (int64_t)m->gross_tonnage_raw, 1.0, 0.0, false, ais_ship_static_voyage_gross_tonnage_specials, 1);
+    ais_json_reading(j, "laden_ballast", (int64_t)m->laden_ballast_raw, 1.0, 0.0, false, ais_ship_static_voyage_laden_ballast_specials, 1);
+    ais_json_reading(j, "heavy_oil", (int64_t)m->heavy_oil_raw, 1.0, 0.0, false, ais_ship_static_voyage_heavy_oil_specials, 1);
+    ais_json_reading(j, "light_oil", (int64_t)m->light_oil_raw, 1.0, 0.0, false, ais_ship_static_voyage_light_oil_specials, 1);
+    ais_json_reading(j, "diesel", (int64_t)m->diesel_raw, 1.0, 0.0, false, ais_ship_static_voyage_diesel_specials, 1);
+    ais_json_reading(j, "bunker_oil", (int64_t)m->bunker_oil_raw, 1.0, 0.0, false, ais_ship_static_voyage_bunker_oil_specials, 1);
+    ais_json_reading(j, "persons", (int64_t)m->persons_raw, 1.0, 0.0, false, ais_ship_static_voyage_persons_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_ship_weather_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_ship_weather_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_ship_weather_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_ship_weather_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_ship_weather_minute_specials[] = {{60, "not_available"}};
+static bool ais_read_ship_weather(nmea_ais_reader *r, nmea_ais_ship_weather *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 1, "wmo", &raw)) return false;
+    m->wmo = raw == 1;
+    {
+        uint64_t selector = (uint64_t)m->wmo;
+        if (selector == 0u) {
+            if (!ais_take_bits(r, 120, "location", &m->location)) return false;
+            m->has_location = true;
+            if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+            m->lon_raw = (int32_t)signed_raw;
+            m->has_lon_raw = true;
+            if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+            m->lat_raw = (int32_t)signed_raw;
+            m->has_lat_raw = true;
+            if (!ais_take(r, 5, "day", &raw)) return false;
+            m->day_raw = (uint8_t)raw;
+            m->has_day_raw = true;
+            if (!ais_take(r, 5, "hour", &raw)) return false;
+            m->hour_raw = (uint8_t)raw;
+            m->has_hour_raw = true;
+            if (!ais_take(r, 6, "minute", &raw)) return false;
+            m->minute_raw = (uint8_t)raw;
+            m->has_minute_raw = true;
+            if (!ais_take(r, 4, "weather", &raw)) return false;
+            m->weather = (uint8_t)raw;
+            m->has_weather = true;
+            if (!ais_take(r, 8, "visibility", &raw)) return false;
+            m->visibility_raw = (uint8_t)raw;
+            m->has_visibility_raw = true;
+            if (!ais_take(r, 7, "humidity", &raw)) return false;
+            m->humidity = (uint8_t)raw;
+            m->has_humidity = true;
+            if (!ais_take(r, 7, "wspeed", &raw)) return false;
+            m->wspeed = (uint8_t)raw;
+            m->has_wspeed = true;
+            if (!ais_take(r, 9, "wdir", &raw)) return false;
+            m->wdir = (uint16_t)raw;
+            m->has_wdir = true;
+            if (!ais_take(r, 9, "pressure", &raw)) return false;
+            m->pressure = (uint16_t)raw;
+            m->has_pressure = true;
+            if (!ais_take(r, 4, "pressure_tendency", &raw)) return false;
+            m->pressure_tendency = (uint8_t)raw;
+            m->has_pressure_tendency = true;
+            if (!ais_take_signed(r, 11, "air_temp", &signed_raw)) return false;
+            m->air_temp_raw = (int16_t)signed_raw;
+            m->has_air_temp_raw = true;
+            if (!ais_take(r, 10, "water_temp", &raw)) return false;
+            m->water_temp_raw = (uint16_t)raw;
+            m->has_water_temp_raw = true;
+            if (!ais_take(r, 6, "wave_period", &raw)) return false;
+            m->wave_period = (uint8_t)raw;
+            m->has_wave_period = true;
+            if (!ais_take(r, 8, "wave_height", &raw)) return false;
+            m->wave_height_raw = (uint8_t)raw;
+            m->has_wave_height_raw = true;
+            if (!ais_take(r, 9, "wave_dir", &raw)) return false;
+            m->wave_dir = (uint16_t)raw;
+            m->has_wave_dir = true;
+            if (!ais_take(r, 8, "swell_height", &raw)) return false;
+            m->swell_height_raw = (uint8_t)raw;
+            m->has_swell_height_raw = true;
+            if (!ais_take(r, 9, "swell_dir", &raw)) return false;
+            m->swell_dir = (uint16_t)raw;
+            m->has_swell_dir = true;
+            if (!ais_take(r, 6, "swell_period", &raw)) return false;
+            m->swell_period = (uint8_t)raw;
+            m->has_swell_period = true;
+            if (!ais_take(r, 3, "spare", &raw)) return false;
+            m->spare = (uint8_t)raw;
+            m->has_spare = true;
+        } else {
+            if (!ais_take(r, 16, "wmo_lon", &raw)) return false;
+            m->wmo_lon_raw = (uint16_t)raw;
+            m->has_wmo_lon_raw = true;
+            if (!ais_take(r, 15, "wmo_lat", &raw)) return false;
+            m->wmo_lat = (uint16_t)raw;
+            m->has_wmo_lat = true;
+            if (!ais_take(r, 4, "wmo_month", &raw)) return false;
+            m->wmo_month = (uint8_t)raw;
+            m->has_wmo_month = true;
+            if (!ais_take(r, 6, "wmo_day", &raw)) return false;
+            m->wmo_day = (uint8_t)raw;
+            m->has_wmo_day = true;
+            if (!ais_take(r, 5, "wmo_hour", &raw)) return false;
+            m->wmo_hour = (uint8_t)raw;
+            m->has_wmo_hour = true;
+            if (!ais_take(r, 3, "wmo_minute", &raw)) return false;
+            m->wmo_minute = (uint8_t)raw;
+            m->has_wmo_minute = true;
+            if (!ais_take(r, 7, "cog", &raw)) return false;
+            m->cog = (uint8_t)raw;
+            m->has_cog = true;
+            if (!ais_take(r, 5, "sog", &raw)) return false;
+            m->sog_raw = (uint8_t)raw;
+            m->has_sog_raw = true;
+            if (!ais_take(r, 7, "heading", &raw)) return false;
+            m->heading = (uint8_t)raw;
+            m->has_heading = true;
+            if (!ais_take(r, 11, "wmo_pressure", &raw)) return false;
+            m->wmo_pressure_raw = (uint16_t)raw;
+            m->has_wmo_pressure_raw = true;
+            if (!ais_take(r, 10, "rel_pressure", &raw)) return false;
+            m->rel_pressure_raw = (uint16_t)raw;
+            m->has_rel_pressure_raw = true;
+            if (!ais_take(r, 4, "wmo_pressure_tendency", &raw)) return false;
+            m->wmo_pressure_tendency = (uint8_t)raw;
+            m->has_wmo_pressure_tendency = true;
+            if (!ais_take(r, 7, "wmo_wdir", &raw)) return false;
+            m->wmo_wdir = (uint8_t)raw;
+            m->has_wmo_wdir = true;
+            if (!ais_take(r, 8, "wmo_wspeed", &raw)) return false;
+            m->wmo_wspeed_raw = (uint8_t)raw;
+            m->has_wmo_wspeed_raw = true;
+            if (!ais_take(r, 7, "rel_wdir", &raw)) return false;
+            m->rel_wdir = (uint8_t)raw;
+            m->has_rel_wdir = true;
+            if (!ais_take(r, 8, "rel_wspeed", &raw)) return false;
+            m->rel_wspeed_raw = (uint8_t)raw;
+            m->has_rel_wspeed_raw = true;
+            if (!ais_take(r, 8, "gust_speed", &raw)) return false;
+            m->gust_speed_raw = (uint8_t)raw;
+            m->has_gust_speed_raw = true;
+            if (!ais_take(r, 7, "gust_dir", &raw)) return false;
+            m->gust_dir = (uint8_t)raw;
+            m->has_gust_dir = true;
+            if (!ais_take(r, 10, "wmo_air_temp", &raw)) return false;
+            m->wmo_air_temp = (uint16_t)raw;
+            m->has_wmo_air_temp = true;
+            if (!ais_take(r, 7, "wmo_humidity", &raw)) return false;
+            m->wmo_humidity = (uint8_t)raw;
+            m->has_wmo_humidity = true;
+            if (!ais_take(r, 9, "wmo_water_temp", &raw)) return false;
+            m->wmo_water_temp = (uint16_t)raw;
+            m->has_wmo_water_temp = true;
+            if (!ais_take(r, 6, "wmo_visibility", &raw)) return false;
+            m->wmo_visibility = (uint8_t)raw;
+            m->has_wmo_visibility = true;
+            if (!ais_take(r, 9, "present_weather", &raw)) return false;
+            m->present_weather = (uint16_t)raw;
+            m->has_present_weather = true;
+            if (!ais_take(r, 5, "past_weather1", &raw)) return false;
+            m->past_weather1 = (uint8_t)raw;
+            m->has_past_weather1 = true;
+            if (!ais_take(r, 5, "past_weather2", &raw)) return false;
+            m->past_weather2 = (uint8_t)raw;
+            m->has_past_weather2 = true;
+            if (!ais_take(r, 4, "cloud_total", &raw)) return false;
+            m->cloud_total = (uint8_t)raw;
+            m->has_cloud_total = true;
+            if (!ais_take(r, 4, "cloud_low", &raw)) return false;
+            m->cloud_low = (uint8_t)raw;
+            m->has_cloud_low = true;
+            if (!ais_take(r, 6, "cloud_low_type", &raw)) return false;
+            m->cloud_low_type = (uint8_t)raw;
+            m->has_cloud_low_type = true;
+            if (!ais_take(r, 6, "cloud_middle_type", &raw)) return false;
+            m->cloud_middle_type = (uint8_t)raw;
+            m->has_cloud_middle_type = true;
+            if (!ais_take(r, 6, "cloud_high_type", &raw)) return false;
+            m->cloud_high_type = (uint8_t)raw;
+            m->has_cloud_high_type = true;
+            if (!ais_take(r, 7, "cloud_base", &raw)) return false;
+            m->cloud_base = (uint8_t)raw;
+            m->has_cloud_base = true;
+            if (!ais_take(r, 5, "wmo_wave_period", &raw)) return false;
+            m->wmo_wave_period = (uint8_t)raw;
+            m->has_wmo_wave_period = true;
+            if (!ais_take(r, 6, "wmo_wave_height", &raw)) return false;
+            m->wmo_wave_height_raw = (uint8_t)raw;
+            m->has_wmo_wave_height_raw = true;
+            if (!ais_take(r, 6, "wmo_swell_dir", &raw)) return false;
+            m->wmo_swell_dir = (uint8_t)raw;
+            m->has_wmo_swell_dir = true;
+            if (!ais_take(r, 5, "wmo_swell_period", &raw)) return false;
+            m->wmo_swell_period = (uint8_t)raw;
+            m->has_wmo_swell_period = true;
+            if (!ais_take(r, 6, "wmo_swell_height", &raw)) return false;
+            m->wmo_swell_height_raw = (uint8_t)raw;
+            m->has_wmo_swell_height_raw = true;
+            if (!ais_take(r, 6, "swell2_dir", &raw)) return false;
+            m->swell2_dir = (uint8_t)raw;
+            m->has_swell2_dir = true;
+            if (!ais_take(r, 5, "swell2_period", &raw)) return false;
+            m->swell2_period = (uint8_t)raw;
+            m->has_swell2_period = true;
+            if (!ais_take(r, 6, "swell2_height", &raw)) return false;
+            m->swell2_height_raw = (uint8_t)raw;
+            m->has_swell2_height_raw = true;
+            if (!ais_take(r, 7, "ice_thickness", &raw)) return false;
+            m->ice_thickness = (uint8_t)raw;
+            m->has_ice_thickness = true;
+            if (!ais_take(r, 3, "ice_accretion", &raw)) return false;
+            m->ice_accretion = (uint8_t)raw;
+            m->has_ice_accretion = true;
+            if (!ais_take(r, 3, "ice_cause", &raw)) return false;
+            m->ice_cause = (uint8_t)raw;
+            m->has_ice_cause = true;
+            if (!ais_take(r, 5, "ice_concentration", &raw)) return false;
+            m->ice_concentration = (uint8_t)raw;
+            m->has_ice_concentration = true;
+            if (!ais_take(r, 4, "ice_type", &raw)) return false;
+            m->ice_type = (uint8_t)raw;
+            m->has_ice_type = true;
+            if (!ais_take(r, 5, "ice_situation", &raw)) return false;
+            m->ice_situation = (uint8_t)raw;
+            m->has_ice_situation = true;
+            if (!ais_take(r, 5, "ice_development", &raw)) return false;
+            m->ice_development = (uint8_t)raw;
+            m->has_ice_development = true;
+            if (!ais_take(r, 4, "ice_bearing", &raw)) return false;
+            m->ice_bearing = (uint8_t)raw;
+            m->has_ice_bearing = true;
+        }
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_ship_weather(const nmea_ais_ship_weather *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->wmo, 1, "wmo")) return false;
+    {
+        uint64_t selector = (uint64_t)m->wmo;
+        if (selector == 0u) {
+            if (!m->has_location) goto done;
+            if (!ais_put_fixed(w, m->location, 120, true, "location")) return false;
+            if (!m->has_lon_raw) goto done;
+            if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+            if (!m->has_lat_raw) goto done;
+            if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+            if (!m->has_day_raw) goto done;
+            if (!ais_put(w, m->day_raw, 5, "day")) return false;
+            if (!m->has_hour_raw) goto done;
+            if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+            if (!m->has_minute_raw) goto done;
+            if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+            if (!m->has_weather) goto done;
+            if (!ais_put(w, m->weather, 4, "weather")) return false;
+            if (!m->has_visibility_raw) goto done;
+            if (!ais_put(w, m->visibility_raw, 8, "visibility")) return false;
+            if (!m->has_humidity) goto done;
+            if (!ais_put(w, m->humidity, 7, "humidity")) return false;
+            if (!m->has_wspeed) goto done;
+            if (!ais_put(w, m->wspeed, 7, "wspeed")) return false;
+            if (!m->has_wdir) goto done;
+            if (!ais_put(w, m->wdir, 9, "wdir")) return false;
+            if (!m->has_pressure) goto done;
+            if (!ais_put(w, m->pressure, 9, "pressure")) return false;
+            if (!m->has_pressure_tendency) goto done;
+            if (!ais_put(w, m->pressure_tendency, 4, "pressure_tendency")) return false;
+            if (!m->has_air_temp_raw) goto done;
+            if (!ais_put_signed(w, m->air_temp_raw, 11, "air_temp")) return false;
+            if (!m->has_water_temp_raw) goto done;
+            if (!ais_put(w, m->water_temp_raw, 10, "water_temp")) return false;
+            if (!m->has_wave_period) goto done;
+            if (!ais_put(w, m->wave_period, 6, "wave_period")) return false;
+            if (!m->has_wave_height_raw) goto done;
+            if (!ais_put(w, m->wave_height_raw, 8, "wave_height")) return false;
+            if (!m->has_wave_dir) goto done;
+            if (!ais_put(w, m->wave_dir, 9, "wave_dir")) return false;
+            if (!m->has_swell_height_raw) goto done;
+            if (!ais_put(w, m->swell_height_raw, 8, "swell_height")) return false;
+            if (!m->has_swell_dir) goto done;
+            if (!ais_put(w, m->swell_dir, 9, "swell_dir")) return false;
+            if (!m->has_swell_period) goto done;
+            if (!ais_put(w, m->swell_period, 6, "swell_period")) return false;
+            if (!m->has_spare) goto done;
+            if (!ais_put(w, m->spare, 3, "spare")) return false;
+        } else {
+            if (!m->has_wmo_lon_raw) goto done;
+            if (!ais_put(w, m->wmo_lon_raw, 16, "wmo_lon")) return false;
+            if (!m->has_wmo_lat) goto done;
+            if (!ais_put(w, m->wmo_lat, 15, "wmo_lat")) return false;
+            if (!m->has_wmo_month) goto done;
+            if (!ais_put(w, m->wmo_month, 4, "wmo_month")) return false;
+            if (!m->has_wmo_day) goto done;
+            if (!ais_put(w, m->wmo_day, 6, "wmo_day")) return false;
+            if (!m->has_wmo_hour) goto done;
+            if (!ais_put(w, m->wmo_hour, 5, "wmo_hour")) return false;
+            if (!m->has_wmo_minute) goto done;
+            if (!ais_put(w, m->wmo_minute, 3, "wmo_minute")) return false;
+            if (!m->has_cog) goto done;
+            if (!ais_put(w, m->cog, 7, "cog")) return false;
+            if (!m->has_sog_raw) goto done;
+            if (!ais_put(w, m->sog_raw, 5, "sog")) return false;
+            if (!m->has_heading) goto done;
+            if (!ais_put(w, m->heading, 7, "heading")) return false;
+            if (!m->has_wmo_pressure_raw) goto done;
+            if (!ais_put(w, m->wmo_pressure_raw, 11, "wmo_pressure")) return false;
+            if (!m->has_rel_pressure_raw) goto done;
+            if (!ais_put(w, m->rel_pressure_raw, 10, "rel_pressure")) return false;
+            if (!m->has_wmo_pressure_tendency) goto done;
+            if (!ais_put(w, m->wmo_pressure_tendency, 4, "wmo_pressure_tendency")) return false;
+            if (!m->has_wmo_wdir) goto done;
+            if (!ais_put(w, m->wmo_wdir, 7, "wmo_wdir")) return false;
+            if (!m->has_wmo_wspeed_raw) goto done;
+            if (!ais_put(w, m->wmo_wspeed_raw, 8, "wmo_wspeed")) return false;
+            if (!m->has_rel_wdir) goto done;
+            if (!ais_put(w, m->rel_wdir, 7, "rel_wdir")) return false;
+            if (!m->has_rel_wspeed_raw) goto done;
+            if (!ais_put(w, m->rel_wspeed_raw, 8, "rel_wspeed")) return false;
+            if (!m->has_gust_speed_raw) goto done;
+            if (!ais_put(w, m->gust_speed_raw, 8, "gust_speed")) return false;
+            if (!m->has_gust_dir) goto done;
+            if (!ais_put(w, m->gust_dir, 7, "gust_dir")) return false;
+            if (!m->has_wmo_air_temp) goto done;
+            if (!ais_put(w, m->wmo_air_temp, 10, "wmo_air_temp")) return false;
+            if (!m->has_wmo_humidity) goto done;
+            if (!ais_put(w, m->wmo_humidity, 7, "wmo_humidity")) return false;
+            if (!m->has_wmo_water_temp) goto done;
+            if (!ais_put(w, m->wmo_water_temp, 9, "wmo_water_temp")) return false;
+            if (!m->has_wmo_visibility) goto done;
+            if (!ais_put(w, m->wmo_visibility, 6, "wmo_visibility")) return false;
+            if (!m->has_present_weather) goto done;
+            if (!ais_put(w, m->present_weather, 9, "present_weather")) return false;
+            if (!m->has_past_weather1) goto done;
+            if (!ais_put(w, m->past_weather1, 5, "past_weather1")) return false;
+            if (!m->has_past_weather2) goto done;
+            if (!ais_put(w, m->past_weather2, 5, "past_weather2")) return false;
+            if (!m->has_cloud_total) goto done;
+            if (!ais_put(w, m->cloud_total, 4, "cloud_total")) return false;
+            if (!m->has_cloud_low) goto done;
+            if (!ais_put(w, m->cloud_low, 4, "cloud_low")) return false;
+            if (!m->has_cloud_low_type) goto done;
+            if (!ais_put(w, m->cloud_low_type, 6, "cloud_low_type")) return false;
+            if (!m->has_cloud_middle_type) goto done;
+            if (!ais_put(w, m->cloud_middle_type, 6, "cloud_middle_type")) return false;
+            if (!m->has_cloud_high_type) goto done;
+            if (!ais_put(w, m->cloud_high_type, 6, "cloud_high_type")) return false;
+            if (!m->has_cloud_base) goto done;
+            if (!ais_put(w, m->cloud_base, 7, "cloud_base")) return false;
+            if (!m->has_wmo_wave_period) goto done;
+            if (!ais_put(w, m->wmo_wave_period, 5, "wmo_wave_period")) return false;
+            if (!m->has_wmo_wave_height_raw) goto done;
+            if (!ais_put(w, m->wmo_wave_height_raw, 6, "wmo_wave_height")) return false;
+            if (!m->has_wmo_swell_dir) goto done;
+            if (!ais_put(w, m->wmo_swell_dir, 6, "wmo_swell_dir")) return false;
+            if (!m->has_wmo_swell_period) goto done;
+            if (!ais_put(w, m->wmo_swell_period, 5, "wmo_swell_period")) return false;
+            if (!m->has_wmo_swell_height_raw) goto done;
+            if (!ais_put(w, m->wmo_swell_height_raw, 6, "wmo_swell_height")) return false;
+            if (!m->has_swell2_dir) goto done;
+            if (!ais_put(w, m->swell2_dir, 6, "swell2_dir")) return false;
+            if (!m->has_swell2_period) goto done;
+            if (!ais_put(w, m->swell2_period, 5, "swell2_period")) return false;
+            if (!m->has_swell2_height_raw) goto done;
+            if (!ais_put(w, m->swell2_height_raw, 6, "swell2_height")) return false;
+            if (!m->has_ice_thickness) goto done;
+            if (!ais_put(w, m->ice_thickness, 7, "ice_thickness")) return false;
+            if (!m->has_ice_accretion) goto done;
+            if (!ais_put(w, m->ice_accretion, 3, "ice_accretion")) return false;
+            if (!m->has_ice_cause) goto done;
+            if (!ais_put(w, m->ice_cause, 3, "ice_cause")) return false;
+            if (!m->has_ice_concentration) goto done;
+            if (!ais_put(w, m->ice_concentration, 5, "ice_concentration")) return false;
+            if (!m->has_ice_type) goto done;
+            if (!ais_put(w, m->ice_type, 4, "ice_type")) return false;
+            if (!m->has_ice_situation) goto done;
+            if (!ais_put(w, m->ice_situation, 5, "ice_situation")) return false;
+            if (!m->has_ice_development) goto done;
+            if (!ais_put(w, m->ice_development, 5, "ice_development")) return false;
+            if (!m->has_ice_bearing) goto done;
+            if (!ais_put(w, m->ice_bearing, 4, "ice_bearing")) return false;
+        }
+    }
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_ship_weather(const nmea_ais_ship_weather *m, nmea_ais_json_out *j)
+{
+    ais_json_flag(j, "wmo", m->wmo);
+    if (m->has_location) {
+        ais_json_text(j, "location", m->location);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_ship_weather_lon_specials, 1);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_ship_weather_lat_specials, 1);
+    }
+    if (m->has_day_raw) {
+        ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_ship_weather_day_specials, 1);
+    }
+    if (m->has_hour_raw) {
+        ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_ship_weather_hour_specials, 1);
+    }
+    if (m->has_minute_raw) {
+        ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_ship_weather_minute_specials, 1);
+    }
+    if (m->has_weather) {
+        ais_json_int(j, "weather", (long long)m->weather);
+    }
+    if (m->has_visibility_raw) {
+        ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_humidity) {
+        ais_json_int(j, "humidity", (long long)m->humidity);
+    }
+    if (m->has_wspeed) {
+        ais_json_int(j, "wspeed", (long long)m->wspeed);
+    }
+    if (m->has_wdir) {
+        ais_json_int(j, "wdir", (long long)m->wdir);
+    }
+    if (m->has_pressure) {
+        ais_json_int(j, "pressure", (long long)m->pressure);
+    }
+    if (m->has_pressure_tendency) {
+        ais_json_int(j, "pressure_tendency", (long long)m->pressure_tendency);
+    }
+    if (m->has_air_temp_raw) {
+        ais_json_reading(j, "air_temp", (int64_t)m->air_temp_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_water_temp_raw) {
+        ais_json_reading(j, "water_temp", (int64_t)m->water_temp_raw, 10.0, -10.0, true, NULL, 0);
+    }
+    if (m->has_wave_period) {
+        ais_json_int(j, "wave_period", (long long)m->wave_period);
+    }
+    if (m->has_wave_height_raw) {
+        ais_json_reading(j, "wave_height", (int64_t)m->wave_height_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_wave_dir) {
+        ais_json_int(j, "wave_dir", (long long)m->wave_dir);
+    }
+    if (m->has_swell_height_raw) {
+        ais_json_reading(j, "swell_height", (int64_t)m->swell_height_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_swell_dir) {
+        ais_json_int(j, "swell_dir", (long long)m->swell_dir);
+    }
+    if (m->has_swell_period) {
+        ais_json_int(j, "swell_period", (long long)m->swell_period);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_wmo_lon_raw) {
+        ais_json_reading(j, "wmo_lon", (int64_t)m->wmo_lon_raw, 100.0, -180.0, true, NULL, 0);
+    }
+    if (m->has_wmo_lat) {
+        ais_json_int(j, "wmo_lat", (long long)m->wmo_lat);
+    }
+    if (m->has_wmo_month) {
+        ais_json_int(j, "wmo_month", (long long)m->wmo_month);
+    }
+    if (m->has_wmo_day) {
+        ais_json_int(j, "wmo_day", (long long)m->wmo_day);
+    }
+    if (m->has_wmo_hour) {
+        ais_json_int(j, "wmo_hour", (long long)m->wmo_hour);
+    }
+    if (m->has_wmo_minute) {
+        ais_json_int(j, "wmo_minute", (long long)m->wmo_minute);
+    }
+    if (m->has_cog) {
+        ais_json_int(j, "cog", (long long)m->cog);
+    }
+    if (m->has_sog_raw) {
+        ais_json_reading(j, "sog", (int64_t)m->sog_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_heading) {
+        ais_json_int(j, "heading", (long long)m->heading);
+    }
+    if (m->has_wmo_pressure_raw) {
+        ais_json_reading(j, "wmo_pressure", (int64_t)m->wmo_pressure_raw, 10.0, 900.0, true, NULL, 0);
+    }
+    if (m->has_rel_pressure_raw) {
+        ais_json_reading(j, "rel_pressure", (int64_t)m->rel_pressure_raw, 10.0, -50.0, true, NULL, 0);
+    }
+    if (m->has_wmo_pressure_tendency) {
+        ais_json_int(j, "wmo_pressure_tendency", (long long)m->wmo_pressure_tendency);
+    }
+    if (m->has_wmo_wdir) {
+        ais_json_int(j, "wmo_wdir", (long long)m->wmo_wdir);
+    }
+    if (m->has_wmo_wspeed_raw) {
+        ais_json_reading(j, "wmo_wspeed", (int64_t)m->wmo_wspeed_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_rel_wdir) {
+        ais_json_int(j, "rel_wdir", (long long)m->rel_wdir);
+    }
+    if (m->has_rel_wspeed_raw) {
+        ais_json_reading(j, "rel_wspeed", (int64_t)m->rel_wspeed_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_gust_speed_raw) {
+        ais_json_reading(j, "gust_speed", (int64_t)m->gust_speed_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_gust_dir) {
+        ais_json_int(j, "gust_dir", (long long)m->gust_dir);
+    }
+    if (m->has_wmo_air_temp) {
+        ais_json_int(j, "wmo_air_temp", (long long)m->wmo_air_temp);
+    }
+    if (m->has_wmo_humidity) {
+        ais_json_int(j, "wmo_humidity", (long long)m->wmo_humidity);
+    }
+    if (m->has_wmo_water_temp) {
+        ais_json_int(j, "wmo_water_temp", (long long)m->wmo_water_temp);
+    }
+    if (m->has_wmo_visibility) {
+        ais_json_int(j, "wmo_visibility", (long long)m->wmo_visibility);
+    }
+    if (m->has_present_weather) {
+        ais_json_int(j, "present_weather", (long long)m->present_weather);
+    }
+    if (m->has_past_weather1) {
+        ais_json_int(j, "past_weather1", (long long)m->past_weather1);
+    }
+    if (m->has_past_weather2) {
+        ais_json_int(j, "past_weather2", (long long)m->past_weather2);
+    }
+    if (m->has_cloud_total) {
+        ais_json_int(j, "cloud_total", (long long)m->cloud_total);
+    }
+    if (m->has_cloud_low) {
+        ais_json_int(j, "cloud_low", (long long)m->cloud_low);
+    }
+    if (m->has_cloud_low_type) {
+        ais_json_int(j, "cloud_low_type", (long long)m->cloud_low_type);
+    }
+    if (m->has_cloud_middle_type) {
+        ais_json_int(j, "cloud_middle_type", (long long)m->cloud_middle_type);
+    }
+    if (m->has_cloud_high_type) {
+        ais_json_int(j, "cloud_high_type", (long long)m->cloud_high_type);
+    }
+    if (m->has_cloud_base) {
+        ais_json_int(j, "cloud_base", (long long)m->cloud_base);
+    }
+    if (m->has_wmo_wave_period) {
+        ais_json_int(j, "wmo_wave_period", (long long)m->wmo_wave_period);
+    }
+    if (m->has_wmo_wave_height_raw) {
+        ais_json_reading(j, "wmo_wave_height", (int64_t)m->wmo_wave_height_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_wmo_swell_dir) {
+        ais_json_int(j, "wmo_swell_dir", (long long)m->wmo_swell_dir);
+    }
+    if (m->has_wmo_swell_period) {
+        ais_json_int(j, "wmo_swell_period", (long long)m->wmo_swell_period);
+    }
+    if (m->has_wmo_swell_height_raw) {
+        ais_json_reading(j, "wmo_swell_height", (int64_t)m->wmo_swell_height_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_swell2_dir) {
+        ais_json_int(j, "swell2_dir", (long long)m->swell2_dir);
+    }
+    if (m->has_swell2_period) {
+        ais_json_int(j, "swell2_period", (long long)m->swell2_period);
+    }
+    if (m->has_swell2_height_raw) {
+        ais_json_reading(j, "swell2_height", (int64_t)m->swell2_height_raw, 2.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_ice_thickness) {
+        ais_json_int(j, "ice_thickness", (long long)m->ice_thickness);
+    }
+    if (m->has_ice_accretion) {
+        ais_json_int(j, "ice_accretion", (long long)m->ice_accretion);
+    }
+    if (m->has_ice_cause) {
+        ais_json_int(j, "ice_cause", (long long)m->ice_cause);
+    }
+    if (m->has_ice_concentration) {
+        ais_json_int(j, "ice_concentration", (long long)m->ice_concentration);
+    }
+    if (m->has_ice_type) {
+        ais_json_int(j, "ice_type", (long long)m->ice_type);
+    }
+    if (m->has_ice_situation) {
+        ais_json_int(j, "ice_situation", (long long)m->ice_situation);
+    }
+    if (m->has_ice_development) {
+        ais_json_int(j, "ice_development", (long long)m->ice_development);
+    }
+    if (m->has_ice_bearing) {
+        ais_json_int(j, "ice_bearing", (long long)m->ice_bearing);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static bool ais_read_text_addressed(nmea_ais_reader *r, nmea_ais_text_addressed *m)
 {
     uint64_t raw;
@@ -4071,6 +5365,1221 @@ static void ais_json_tidal_window_imo236(const nmea_ais_tidal_window_imo236 *m, 
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_traffic_signal_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_status_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_signal_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_traffic_signal_next_signal_specials[] = {{0, "not_available"}};
+static bool ais_read_traffic_signal(nmea_ais_reader *r, nmea_ais_traffic_signal *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take_bits(r, 120, "station", &m->station)) return false;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 2, "status", &raw)) return false;
+    m->status_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "signal", &raw)) return false;
+    m->signal_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "next_signal", &raw)) return false;
+    m->next_signal_raw = (uint8_t)raw;
+    if (ais_remaining(r) < 64) goto done;
+    if (!ais_take(r, 64, "spare", &raw)) return false;
+    m->spare = (uint64_t)raw;
+    m->has_spare = true;
+    if (ais_remaining(r) < 38) goto done;
+    if (!ais_take(r, 38, "spare2", &raw)) return false;
+    m->spare2 = (uint64_t)raw;
+    m->has_spare2 = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_traffic_signal(const nmea_ais_traffic_signal *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put_fixed(w, m->station, 120, true, "station")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put(w, m->status_raw, 2, "status")) return false;
+    if (!ais_put(w, m->signal_raw, 5, "signal")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->next_signal_raw, 5, "next_signal")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 64, "spare")) return false;
+    if (!m->has_spare2) goto done;
+    if (!ais_put(w, m->spare2, 38, "spare2")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_traffic_signal(const nmea_ais_traffic_signal *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_text(j, "station", m->station);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_traffic_signal_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_traffic_signal_lat_specials, 1);
+    ais_json_reading(j, "status", (int64_t)m->status_raw, 1.0, 0.0, false, ais_traffic_signal_status_specials, 1);
+    ais_json_reading(j, "signal", (int64_t)m->signal_raw, 1.0, 0.0, false, ais_traffic_signal_signal_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_traffic_signal_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_traffic_signal_minute_specials, 1);
+    ais_json_reading(j, "next_signal", (int64_t)m->next_signal_raw, 1.0, 0.0, false, ais_traffic_signal_next_signal_specials, 1);
+    if (m->has_spare) {
+        ais_json_uint(j, "spare", (unsigned long long)m->spare);
+    }
+    if (m->has_spare2) {
+        ais_json_uint(j, "spare2", (unsigned long long)m->spare2);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_uscg_environmental_report_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wspeed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wgust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wgustdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_fwspeed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_fwgust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_fwdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind_duration_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_specials[] = {{-32768, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_trend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_datum_specials[] = {{14, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_forecast_level_specials[] = {{-32768, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_level_duration_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cspeed1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdir1_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdepth1_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cspeed2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdir2_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdepth2_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cspeed3_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdir3_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_cdepth3_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_swell_height_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_swell_period_specials[] = {{61, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_swell_dir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_sea_state_specials[] = {{13, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_water_temp_specials[] = {{601, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_water_temp_depth_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wave_height_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wave_period_specials[] = {{61, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wave_dir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_sea_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_salinity_water_temp_specials[] = {{601, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_conductivity_specials[] = {{702, "not_available"}, {703, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_water_pressure_specials[] = {{60002, "not_available"}, {60003, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_temp_specials[] = {{-1024, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_visibility_specials[] = {{242, "not_available"}, {243, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_dew_point_specials[] = {{701, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_pressure_specials[] = {{403, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_pressure_tendency_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_weather_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_draught_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_gap_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_gap_trend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_forecast_air_gap_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_gap_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_gap_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_air_gap_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_speed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_gust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_dir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_fspeed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_fgust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_fdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_uscg_environmental_report_wind2_duration_specials[] = {{255, "not_available"}};
+static bool ais_read_uscg_environmental_report(nmea_ais_reader *r, nmea_ais_uscg_environmental_report *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 4, "report_type", &raw)) return false;
+    m->report_type = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "site", &raw)) return false;
+    m->site = (uint8_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->report_type;
+        if (selector == 0u) {
+            if (!ais_take(r, 6, "version", &raw)) return false;
+            m->version = (uint8_t)raw;
+            m->has_version = true;
+            if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+            m->lon_raw = (int32_t)signed_raw;
+            m->has_lon_raw = true;
+            if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+            m->lat_raw = (int32_t)signed_raw;
+            m->has_lat_raw = true;
+            if (!ais_take(r, 3, "precision", &raw)) return false;
+            m->precision = (uint8_t)raw;
+            m->has_precision = true;
+            if (!ais_take(r, 12, "altitude", &raw)) return false;
+            m->altitude_raw = (uint16_t)raw;
+            m->has_altitude_raw = true;
+            if (!ais_take(r, 4, "owner", &raw)) return false;
+            m->owner = (uint8_t)raw;
+            m->has_owner = true;
+            if (!ais_take(r, 3, "timeout", &raw)) return false;
+            m->timeout = (uint8_t)raw;
+            m->has_timeout = true;
+            if (!ais_take(r, 2, "location_spare", &raw)) return false;
+            m->location_spare = (uint8_t)raw;
+            m->has_location_spare = true;
+        } else if (selector == 1u) {
+            if (!ais_take_bits(r, 84, "name", &m->name)) return false;
+            m->has_name = true;
+            if (!ais_take(r, 1, "station_spare", &raw)) return false;
+            m->station_spare = (uint8_t)raw;
+            m->has_station_spare = true;
+        } else if (selector == 2u) {
+            if (!ais_take(r, 7, "wspeed", &raw)) return false;
+            m->wspeed_raw = (uint8_t)raw;
+            m->has_wspeed_raw = true;
+            if (!ais_take(r, 7, "wgust", &raw)) return false;
+            m->wgust_raw = (uint8_t)raw;
+            m->has_wgust_raw = true;
+            if (!ais_take(r, 9, "wdir", &raw)) return false;
+            m->wdir_raw = (uint16_t)raw;
+            m->has_wdir_raw = true;
+            if (!ais_take(r, 9, "wgustdir", &raw)) return false;
+            m->wgustdir_raw = (uint16_t)raw;
+            m->has_wgustdir_raw = true;
+            if (!ais_take(r, 3, "wind_sensor", &raw)) return false;
+            m->wind_sensor_raw = (uint8_t)raw;
+            m->has_wind_sensor_raw = true;
+            if (!ais_take(r, 7, "fwspeed", &raw)) return false;
+            m->fwspeed_raw = (uint8_t)raw;
+            m->has_fwspeed_raw = true;
+            if (!ais_take(r, 7, "fwgust", &raw)) return false;
+            m->fwgust_raw = (uint8_t)raw;
+            m->has_fwgust_raw = true;
+            if (!ais_take(r, 9, "fwdir", &raw)) return false;
+            m->fwdir_raw = (uint16_t)raw;
+            m->has_fwdir_raw = true;
+            if (!ais_take(r, 5, "wind_day", &raw)) return false;
+            m->wind_day_raw = (uint8_t)raw;
+            m->has_wind_day_raw = true;
+            if (!ais_take(r, 5, "wind_hour", &raw)) return false;
+            m->wind_hour_raw = (uint8_t)raw;
+            m->has_wind_hour_raw = true;
+            if (!ais_take(r, 6, "wind_minute", &raw)) return false;
+            m->wind_minute_raw = (uint8_t)raw;
+            m->has_wind_minute_raw = true;
+            if (!ais_take(r, 8, "wind_duration", &raw)) return false;
+            m->wind_duration_raw = (uint8_t)raw;
+            m->has_wind_duration_raw = true;
+            if (!ais_take(r, 3, "wind_spare", &raw)) return false;
+            m->wind_spare = (uint8_t)raw;
+            m->has_wind_spare = true;
+        } else if (selector == 3u) {
+            if (!ais_take(r, 1, "absolute", &raw)) return false;
+            m->absolute = raw == 1;
+            m->has_absolute = true;
+            if (!ais_take_signed(r, 16, "level", &signed_raw)) return false;
+            m->level_raw = (int16_t)signed_raw;
+            m->has_level_raw = true;
+            if (!ais_take(r, 2, "level_trend", &raw)) return false;
+            m->level_trend_raw = (uint8_t)raw;
+            m->has_level_trend_raw = true;
+            if (!ais_take(r, 5, "datum", &raw)) return false;
+            m->datum_raw = (uint8_t)raw;
+            m->has_datum_raw = true;
+            if (!ais_take(r, 3, "level_sensor", &raw)) return false;
+            m->level_sensor_raw = (uint8_t)raw;
+            m->has_level_sensor_raw = true;
+            if (!ais_take(r, 1, "forecast_absolute", &raw)) return false;
+            m->forecast_absolute = raw == 1;
+            m->has_forecast_absolute = true;
+            if (!ais_take_signed(r, 16, "forecast_level", &signed_raw)) return false;
+            m->forecast_level_raw = (int16_t)signed_raw;
+            m->has_forecast_level_raw = true;
+            if (!ais_take(r, 5, "level_day", &raw)) return false;
+            m->level_day_raw = (uint8_t)raw;
+            m->has_level_day_raw = true;
+            if (!ais_take(r, 5, "level_hour", &raw)) return false;
+            m->level_hour_raw = (uint8_t)raw;
+            m->has_level_hour_raw = true;
+            if (!ais_take(r, 6, "level_minute", &raw)) return false;
+            m->level_minute_raw = (uint8_t)raw;
+            m->has_level_minute_raw = true;
+            if (!ais_take(r, 8, "level_duration", &raw)) return false;
+            m->level_duration_raw = (uint8_t)raw;
+            m->has_level_duration_raw = true;
+            if (!ais_take(r, 17, "level_spare", &raw)) return false;
+            m->level_spare = (uint32_t)raw;
+            m->has_level_spare = true;
+        } else if (selector == 4u) {
+            if (!ais_take(r, 8, "cspeed1", &raw)) return false;
+            m->cspeed1_raw = (uint8_t)raw;
+            m->has_cspeed1_raw = true;
+            if (!ais_take(r, 9, "cdir1", &raw)) return false;
+            m->cdir1_raw = (uint16_t)raw;
+            m->has_cdir1_raw = true;
+            if (!ais_take(r, 9, "cdepth1", &raw)) return false;
+            m->cdepth1_raw = (uint16_t)raw;
+            m->has_cdepth1_raw = true;
+            if (!ais_take(r, 8, "cspeed2", &raw)) return false;
+            m->cspeed2_raw = (uint8_t)raw;
+            m->has_cspeed2_raw = true;
+            if (!ais_take(r, 9, "cdir2", &raw)) return false;
+            m->cdir2_raw = (uint16_t)raw;
+            m->has_cdir2_raw = true;
+            if (!ais_take(r, 9, "cdepth2", &raw)) return false;
+            m->cdepth2_raw = (uint16_t)raw;
+            m->has_cdepth2_raw = true;
+            if (!ais_take(r, 8, "cspeed3", &raw)) return false;
+            m->cspeed3_raw = (uint8_t)raw;
+            m->has_cspeed3_raw = true;
+            if (!ais_take(r, 9, "cdir3", &raw)) return false;
+            m->cdir3_raw = (uint16_t)raw;
+            m->has_cdir3_raw = true;
+            if (!ais_take(r, 9, "cdepth3", &raw)) return false;
+            m->cdepth3_raw = (uint16_t)raw;
+            m->has_cdepth3_raw = true;
+            if (!ais_take(r, 3, "current_sensor", &raw)) return false;
+            m->current_sensor_raw = (uint8_t)raw;
+            m->has_current_sensor_raw = true;
+            if (!ais_take(r, 4, "current_spare", &raw)) return false;
+            m->current_spare = (uint8_t)raw;
+            m->has_current_spare = true;
+        } else if (selector == 5u) {
+            if (!ais_take(r, 9, "cnorth1", &raw)) return false;
+            m->cnorth1_raw = (uint16_t)raw;
+            m->has_cnorth1_raw = true;
+            if (!ais_take(r, 9, "ceast1", &raw)) return false;
+            m->ceast1_raw = (uint16_t)raw;
+            m->has_ceast1_raw = true;
+            if (!ais_take(r, 9, "cup1", &raw)) return false;
+            m->cup1_raw = (uint16_t)raw;
+            m->has_cup1_raw = true;
+            if (!ais_take(r, 9, "c3depth1", &raw)) return false;
+            m->c3depth1 = (uint16_t)raw;
+            m->has_c3depth1 = true;
+            if (!ais_take(r, 9, "cnorth2", &raw)) return false;
+            m->cnorth2_raw = (uint16_t)raw;
+            m->has_cnorth2_raw = true;
+            if (!ais_take(r, 9, "ceast2", &raw)) return false;
+            m->ceast2_raw = (uint16_t)raw;
+            m->has_ceast2_raw = true;
+            if (!ais_take(r, 9, "cup2", &raw)) return false;
+            m->cup2_raw = (uint16_t)raw;
+            m->has_cup2_raw = true;
+            if (!ais_take(r, 9, "c3depth2", &raw)) return false;
+            m->c3depth2 = (uint16_t)raw;
+            m->has_c3depth2 = true;
+            if (!ais_take(r, 3, "current3d_sensor", &raw)) return false;
+            m->current3d_sensor_raw = (uint8_t)raw;
+            m->has_current3d_sensor_raw = true;
+            if (!ais_take(r, 10, "current3d_spare", &raw)) return false;
+            m->current3d_spare = (uint16_t)raw;
+            m->has_current3d_spare = true;
+        } else if (selector == 6u) {
+            if (!ais_take(r, 9, "hbearing", &raw)) return false;
+            m->hbearing = (uint16_t)raw;
+            m->has_hbearing = true;
+            if (!ais_take(r, 9, "hdistance1", &raw)) return false;
+            m->hdistance1 = (uint16_t)raw;
+            m->has_hdistance1 = true;
+            if (!ais_take(r, 8, "hspeed1", &raw)) return false;
+            m->hspeed1_raw = (uint8_t)raw;
+            m->has_hspeed1_raw = true;
+            if (!ais_take(r, 9, "hdir1", &raw)) return false;
+            m->hdir1 = (uint16_t)raw;
+            m->has_hdir1 = true;
+            if (!ais_take(r, 9, "hlevel1", &raw)) return false;
+            m->hlevel1 = (uint16_t)raw;
+            m->has_hlevel1 = true;
+            if (!ais_take(r, 9, "hdistance2", &raw)) return false;
+            m->hdistance2 = (uint16_t)raw;
+            m->has_hdistance2 = true;
+            if (!ais_take(r, 8, "hspeed2", &raw)) return false;
+            m->hspeed2_raw = (uint8_t)raw;
+            m->has_hspeed2_raw = true;
+            if (!ais_take(r, 9, "hdir2", &raw)) return false;
+            m->hdir2 = (uint16_t)raw;
+            m->has_hdir2 = true;
+            if (!ais_take(r, 9, "hlevel2", &raw)) return false;
+            m->hlevel2 = (uint16_t)raw;
+            m->has_hlevel2 = true;
+            if (!ais_take(r, 3, "horizontal_sensor", &raw)) return false;
+            m->horizontal_sensor_raw = (uint8_t)raw;
+            m->has_horizontal_sensor_raw = true;
+            if (!ais_take(r, 3, "horizontal_spare", &raw)) return false;
+            m->horizontal_spare = (uint8_t)raw;
+            m->has_horizontal_spare = true;
+        } else if (selector == 7u) {
+            if (!ais_take(r, 8, "swell_height", &raw)) return false;
+            m->swell_height_raw = (uint8_t)raw;
+            m->has_swell_height_raw = true;
+            if (!ais_take(r, 6, "swell_period", &raw)) return false;
+            m->swell_period_raw = (uint8_t)raw;
+            m->has_swell_period_raw = true;
+            if (!ais_take(r, 9, "swell_dir", &raw)) return false;
+            m->swell_dir_raw = (uint16_t)raw;
+            m->has_swell_dir_raw = true;
+            if (!ais_take(r, 4, "sea_state", &raw)) return false;
+            m->sea_state_raw = (uint8_t)raw;
+            m->has_sea_state_raw = true;
+            if (!ais_take(r, 3, "swell_sensor", &raw)) return false;
+            m->swell_sensor_raw = (uint8_t)raw;
+            m->has_swell_sensor_raw = true;
+            if (!ais_take(r, 10, "water_temp", &raw)) return false;
+            m->water_temp_raw = (uint16_t)raw;
+            m->has_water_temp_raw = true;
+            if (!ais_take(r, 7, "water_temp_depth", &raw)) return false;
+            m->water_temp_depth_raw = (uint8_t)raw;
+            m->has_water_temp_depth_raw = true;
+            if (!ais_take(r, 3, "water_sensor", &raw)) return false;
+            m->water_sensor_raw = (uint8_t)raw;
+            m->has_water_sensor_raw = true;
+            if (!ais_take(r, 8, "wave_height", &raw)) return false;
+            m->wave_height_raw = (uint8_t)raw;
+            m->has_wave_height_raw = true;
+            if (!ais_take(r, 6, "wave_period", &raw)) return false;
+            m->wave_period_raw = (uint8_t)raw;
+            m->has_wave_period_raw = true;
+            if (!ais_take(r, 9, "wave_dir", &raw)) return false;
+            m->wave_dir_raw = (uint16_t)raw;
+            m->has_wave_dir_raw = true;
+            if (!ais_take(r, 3, "wave_sensor", &raw)) return false;
+            m->wave_sensor_raw = (uint8_t)raw;
+            m->has_wave_sensor_raw = true;
+            if (!ais_take(r, 9, "sea_salinity", &raw)) return false;
+            m->sea_salinity_raw = (uint16_t)raw;
+            m->has_sea_salinity_raw = true;
+        } else if (selector == 8u) {
+            if (!ais_take(r, 10, "salinity_water_temp", &raw)) return false;
+            m->salinity_water_temp_raw = (uint16_t)raw;
+            m->has_salinity_water_temp_raw = true;
+            if (!ais_take(r, 10, "conductivity", &raw)) return false;
+            m->conductivity_raw = (uint16_t)raw;
+            m->has_conductivity_raw = true;
+            if (!ais_take(r, 16, "water_pressure", &raw)) return false;
+            m->water_pressure_raw = (uint16_t)raw;
+            m->has_water_pressure_raw = true;
+            if (!ais_take(r, 9, "salinity", &raw)) return false;
+            m->salinity_raw = (uint16_t)raw;
+            m->has_salinity_raw = true;
+            if (!ais_take(r, 2, "salinity_type", &raw)) return false;
+            m->salinity_type = (uint8_t)raw;
+            m->has_salinity_type = true;
+            if (!ais_take(r, 3, "salinity_sensor", &raw)) return false;
+            m->salinity_sensor_raw = (uint8_t)raw;
+            m->has_salinity_sensor_raw = true;
+            if (!ais_take(r, 35, "salinity_spare", &raw)) return false;
+            m->salinity_spare = (uint64_t)raw;
+            m->has_salinity_spare = true;
+        } else if (selector == 9u) {
+            if (!ais_take_signed(r, 11, "air_temp", &signed_raw)) return false;
+            m->air_temp_raw = (int16_t)signed_raw;
+            m->has_air_temp_raw = true;
+            if (!ais_take(r, 3, "air_temp_sensor", &raw)) return false;
+            m->air_temp_sensor_raw = (uint8_t)raw;
+            m->has_air_temp_sensor_raw = true;
+            if (!ais_take(r, 2, "precipitation", &raw)) return false;
+            m->precipitation = (uint8_t)raw;
+            m->has_precipitation = true;
+            if (!ais_take(r, 8, "visibility", &raw)) return false;
+            m->visibility_raw = (uint8_t)raw;
+            m->has_visibility_raw = true;
+            if (!ais_take(r, 10, "dew_point", &raw)) return false;
+            m->dew_point_raw = (uint16_t)raw;
+            m->has_dew_point_raw = true;
+            if (!ais_take(r, 3, "dew_point_sensor", &raw)) return false;
+            m->dew_point_sensor_raw = (uint8_t)raw;
+            m->has_dew_point_sensor_raw = true;
+            if (!ais_take(r, 9, "air_pressure", &raw)) return false;
+            m->air_pressure_raw = (uint16_t)raw;
+            m->has_air_pressure_raw = true;
+            if (!ais_take(r, 2, "pressure_tendency", &raw)) return false;
+            m->pressure_tendency_raw = (uint8_t)raw;
+            m->has_pressure_tendency_raw = true;
+            if (!ais_take(r, 3, "pressure_sensor", &raw)) return false;
+            m->pressure_sensor_raw = (uint8_t)raw;
+            m->has_pressure_sensor_raw = true;
+            if (!ais_take(r, 9, "weather_salinity", &raw)) return false;
+            m->weather_salinity_raw = (uint16_t)raw;
+            m->has_weather_salinity_raw = true;
+            if (!ais_take(r, 25, "weather_spare", &raw)) return false;
+            m->weather_spare = (uint32_t)raw;
+            m->has_weather_spare = true;
+        } else if (selector == 10u) {
+            if (!ais_take(r, 13, "air_draught", &raw)) return false;
+            m->air_draught_raw = (uint16_t)raw;
+            m->has_air_draught_raw = true;
+            if (!ais_take(r, 13, "air_gap", &raw)) return false;
+            m->air_gap_raw = (uint16_t)raw;
+            m->has_air_gap_raw = true;
+            if (!ais_take(r, 2, "air_gap_trend", &raw)) return false;
+            m->air_gap_trend_raw = (uint8_t)raw;
+            m->has_air_gap_trend_raw = true;
+            if (!ais_take(r, 13, "forecast_air_gap", &raw)) return false;
+            m->forecast_air_gap_raw = (uint16_t)raw;
+            m->has_forecast_air_gap_raw = true;
+            if (!ais_take(r, 5, "air_gap_day", &raw)) return false;
+            m->air_gap_day_raw = (uint8_t)raw;
+            m->has_air_gap_day_raw = true;
+            if (!ais_take(r, 5, "air_gap_hour", &raw)) return false;
+            m->air_gap_hour_raw = (uint8_t)raw;
+            m->has_air_gap_hour_raw = true;
+            if (!ais_take(r, 6, "air_gap_minute", &raw)) return false;
+            m->air_gap_minute_raw = (uint8_t)raw;
+            m->has_air_gap_minute_raw = true;
+            if (!ais_take(r, 3, "air_gap_sensor", &raw)) return false;
+            m->air_gap_sensor_raw = (uint8_t)raw;
+            m->has_air_gap_sensor_raw = true;
+            if (!ais_take(r, 25, "air_gap_spare", &raw)) return false;
+            m->air_gap_spare = (uint32_t)raw;
+            m->has_air_gap_spare = true;
+        } else if (selector == 11u) {
+            if (!ais_take(r, 7, "wind2_speed", &raw)) return false;
+            m->wind2_speed_raw = (uint8_t)raw;
+            m->has_wind2_speed_raw = true;
+            if (!ais_take(r, 7, "wind2_gust", &raw)) return false;
+            m->wind2_gust_raw = (uint8_t)raw;
+            m->has_wind2_gust_raw = true;
+            if (!ais_take(r, 9, "wind2_dir", &raw)) return false;
+            m->wind2_dir_raw = (uint16_t)raw;
+            m->has_wind2_dir_raw = true;
+            if (!ais_take(r, 6, "averaging_time", &raw)) return false;
+            m->averaging_time = (uint8_t)raw;
+            m->has_averaging_time = true;
+            if (!ais_take(r, 3, "wind2_sensor", &raw)) return false;
+            m->wind2_sensor_raw = (uint8_t)raw;
+            m->has_wind2_sensor_raw = true;
+            if (!ais_take(r, 7, "wind2_fspeed", &raw)) return false;
+            m->wind2_fspeed_raw = (uint8_t)raw;
+            m->has_wind2_fspeed_raw = true;
+            if (!ais_take(r, 7, "wind2_fgust", &raw)) return false;
+            m->wind2_fgust_raw = (uint8_t)raw;
+            m->has_wind2_fgust_raw = true;
+            if (!ais_take(r, 9, "wind2_fdir", &raw)) return false;
+            m->wind2_fdir_raw = (uint16_t)raw;
+            m->has_wind2_fdir_raw = true;
+            if (!ais_take(r, 5, "wind2_hour", &raw)) return false;
+            m->wind2_hour_raw = (uint8_t)raw;
+            m->has_wind2_hour_raw = true;
+            if (!ais_take(r, 6, "wind2_minute", &raw)) return false;
+            m->wind2_minute_raw = (uint8_t)raw;
+            m->has_wind2_minute_raw = true;
+            if (!ais_take(r, 8, "wind2_duration", &raw)) return false;
+            m->wind2_duration_raw = (uint8_t)raw;
+            m->has_wind2_duration_raw = true;
+            if (!ais_take(r, 11, "wind2_spare", &raw)) return false;
+            m->wind2_spare = (uint16_t)raw;
+            m->has_wind2_spare = true;
+        } else {
+            if (!ais_take_bits(r, 85, "reserved", &m->reserved)) return false;
+            m->has_reserved = true;
+        }
+    }
+    return true;
+}
+
+static bool ais_write_uscg_environmental_report(const nmea_ais_uscg_environmental_report *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->report_type, 4, "report_type")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->site, 7, "site")) return false;
+    {
+        uint64_t selector = (uint64_t)m->report_type;
+        if (selector == 0u) {
+            if (!m->has_version) goto done;
+            if (!ais_put(w, m->version, 6, "version")) return false;
+            if (!m->has_lon_raw) goto done;
+            if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+            if (!m->has_lat_raw) goto done;
+            if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+            if (!m->has_precision) goto done;
+            if (!ais_put(w, m->precision, 3, "precision")) return false;
+            if (!m->has_altitude_raw) goto done;
+            if (!ais_put(w, m->altitude_raw, 12, "altitude")) return false;
+            if (!m->has_owner) goto done;
+            if (!ais_put(w, m->owner, 4, "owner")) return false;
+            if (!m->has_timeout) goto done;
+            if (!ais_put(w, m->timeout, 3, "timeout")) return false;
+            if (!m->has_location_spare) goto done;
+            if (!ais_put(w, m->location_spare, 2, "location_spare")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_name) goto done;
+            if (!ais_put_fixed(w, m->name, 84, true, "name")) return false;
+            if (!m->has_station_spare) goto done;
+            if (!ais_put(w, m->station_spare, 1, "station_spare")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_wspeed_raw) goto done;
+            if (!ais_put(w, m->wspeed_raw, 7, "wspeed")) return false;
+            if (!m->has_wgust_raw) goto done;
+            if (!ais_put(w, m->wgust_raw, 7, "wgust")) return false;
+            if (!m->has_wdir_raw) goto done;
+            if (!ais_put(w, m->wdir_raw, 9, "wdir")) return false;
+            if (!m->has_wgustdir_raw) goto done;
+            if (!ais_put(w, m->wgustdir_raw, 9, "wgustdir")) return false;
+            if (!m->has_wind_sensor_raw) goto done;
+            if (!ais_put(w, m->wind_sensor_raw, 3, "wind_sensor")) return false;
+            if (!m->has_fwspeed_raw) goto done;
+            if (!ais_put(w, m->fwspeed_raw, 7, "fwspeed")) return false;
+            if (!m->has_fwgust_raw) goto done;
+            if (!ais_put(w, m->fwgust_raw, 7, "fwgust")) return false;
+            if (!m->has_fwdir_raw) goto done;
+            if (!ais_put(w, m->fwdir_raw, 9, "fwdir")) return false;
+            if (!m->has_wind_day_raw) goto done;
+            if (!ais_put(w, m->wind_day_raw, 5, "wind_day")) return false;
+            if (!m->has_wind_hour_raw) goto done;
+            if (!ais_put(w, m->wind_hour_raw, 5, "wind_hour")) return false;
+            if (!m->has_wind_minute_raw) goto done;
+            if (!ais_put(w, m->wind_minute_raw, 6, "wind_minute")) return false;
+            if (!m->has_wind_duration_raw) goto done;
+            if (!ais_put(w, m->wind_duration_raw, 8, "wind_duration")) return false;
+            if (!m->has_wind_spare) goto done;
+            if (!ais_put(w, m->wind_spare, 3, "wind_spare")) return false;
+        } else if (selector == 3u) {
+            if (!m->has_absolute) goto done;
+            if (!ais_put(w, m->absolute, 1, "absolute")) return false;
+            if (!m->has_level_raw) goto done;
+            if (!ais_put_signed(w, m->level_raw, 16, "level")) return false;
+            if (!m->has_level_trend_raw) goto done;
+            if (!ais_put(w, m->level_trend_raw, 2, "level_trend")) return false;
+            if (!m->has_datum_raw) goto done;
+            if (!ais_put(w, m->datum_raw, 5, "datum")) return false;
+            if (!m->has_level_sensor_raw) goto done;
+            if (!ais_put(w, m->level_sensor_raw, 3, "level_sensor")) return false;
+            if (!m->has_forecast_absolute) goto done;
+            if (!ais_put(w, m->forecast_absolute, 1, "forecast_absolute")) return false;
+            if (!m->has_forecast_level_raw) goto done;
+            if (!ais_put_signed(w, m->forecast_level_raw, 16, "forecast_level")) return false;
+            if (!m->has_level_day_raw) goto done;
+            if (!ais_put(w, m->level_day_raw, 5, "level_day")) return false;
+            if (!m->has_level_hour_raw) goto done;
+            if (!ais_put(w, m->level_hour_raw, 5, "level_hour")) return false;
+            if (!m->has_level_minute_raw) goto done;
+            if (!ais_put(w, m->level_minute_raw, 6, "level_minute")) return false;
+            if (!m->has_level_duration_raw) goto done;
+            if (!ais_put(w, m->level_duration_raw, 8, "level_duration")) return false;
+            if (!m->has_level_spare) goto done;
+            if (!ais_put(w, m->level_spare, 17, "level_spare")) return false;
+        } else if (selector == 4u) {
+            if (!m->has_cspeed1_raw) goto done;
+            if (!ais_put(w, m->cspeed1_raw, 8, "cspeed1")) return false;
+            if (!m->has_cdir1_raw) goto done;
+            if (!ais_put(w, m->cdir1_raw, 9, "cdir1")) return false;
+            if (!m->has_cdepth1_raw) goto done;
+            if (!ais_put(w, m->cdepth1_raw, 9, "cdepth1")) return false;
+            if (!m->has_cspeed2_raw) goto done;
+            if (!ais_put(w, m->cspeed2_raw, 8, "cspeed2")) return false;
+            if (!m->has_cdir2_raw) goto done;
+            if (!ais_put(w, m->cdir2_raw, 9, "cdir2")) return false;
+            if (!m->has_cdepth2_raw) goto done;
+            if (!ais_put(w, m->cdepth2_raw, 9, "cdepth2")) return false;
+            if (!m->has_cspeed3_raw) goto done;
+            if (!ais_put(w, m->cspeed3_raw, 8, "cspeed3")) return false;
+            if (!m->has_cdir3_raw) goto done;
+            if (!ais_put(w, m->cdir3_raw, 9, "cdir3")) return false;
+            if (!m->has_cdepth3_raw) goto done;
+            if (!ais_put(w, m->cdepth3_raw, 9, "cdepth3")) return false;
+            if (!m->has_current_sensor_raw) goto done;
+            if (!ais_put(w, m->current_sensor_raw, 3, "current_sensor")) return false;
+            if (!m->has_current_spare) goto done;
+            if (!ais_put(w, m->current_spare, 4, "current_spare")) return false;
+        } else if (selector == 5u) {
+            if (!m->has_cnorth1_raw) goto done;
+            if (!ais_put(w, m->cnorth1_raw, 9, "cnorth1")) return false;
+            if (!m->has_ceast1_raw) goto done;
+            if (!ais_put(w, m->ceast1_raw, 9, "ceast1")) return false;
+            if (!m->has_cup1_raw) goto done;
+            if (!ais_put(w, m->cup1_raw, 9, "cup1")) return false;
+            if (!m->has_c3depth1) goto done;
+            if (!ais_put(w, m->c3depth1, 9, "c3depth1")) return false;
+            if (!m->has_cnorth2_raw) goto done;
+            if (!ais_put(w, m->cnorth2_raw, 9, "cnorth2")) return false;
+            if (!m->has_ceast2_raw) goto done;
+            if (!ais_put(w, m->ceast2_raw, 9, "ceast2")) return false;
+            if (!m->has_cup2_raw) goto done;
+            if (!ais_put(w, m->cup2_raw, 9, "cup2")) return false;
+            if (!m->has_c3depth2) goto done;
+            if (!ais_put(w, m->c3depth2, 9, "c3depth2")) return false;
+            if (!m->has_current3d_sensor_raw) goto done;
+            if (!ais_put(w, m->current3d_sensor_raw, 3, "current3d_sensor")) return false;
+            if (!m->has_current3d_spare) goto done;
+            if (!ais_put(w, m->current3d_spare, 10, "current3d_spare")) return false;
+        } else if (selector == 6u) {
+            if (!m->has_hbearing) goto done;
+            if (!ais_put(w, m->hbearing, 9, "hbearing")) return false;
+            if (!m->has_hdistance1) goto done;
+            if (!ais_put(w, m->hdistance1, 9, "hdistance1")) return false;
+            if (!m->has_hspeed1_raw) goto done;
+            if (!ais_put(w, m->hspeed1_raw, 8, "hspeed1")) return false;
+            if (!m->has_hdir1) goto done;
+            if (!ais_put(w, m->hdir1, 9, "hdir1")) return false;
+            if (!m->has_hlevel1) goto done;
+            if (!ais_put(w, m->hlevel1, 9, "hlevel1")) return false;
+            if (!m->has_hdistance2) goto done;
+            if (!ais_put(w, m->hdistance2, 9, "hdistance2")) return false;
+            if (!m->has_hspeed2_raw) goto done;
+            if (!ais_put(w, m->hspeed2_raw, 8, "hspeed2")) return false;
+            if (!m->has_hdir2) goto done;
+            if (!ais_put(w, m->hdir2, 9, "hdir2")) return false;
+            if (!m->has_hlevel2) goto done;
+            if (!ais_put(w, m->hlevel2, 9, "hlevel2")) return false;
+            if (!m->has_horizontal_sensor_raw) goto done;
+            if (!ais_put(w, m->horizontal_sensor_raw, 3, "horizontal_sensor")) return false;
+            if (!m->has_horizontal_spare) goto done;
+            if (!ais_put(w, m->horizontal_spare, 3, "horizontal_spare")) return false;
+        } else if (selector == 7u) {
+            if (!m->has_swell_height_raw) goto done;
+            if (!ais_put(w, m->swell_height_raw, 8, "swell_height")) return false;
+            if (!m->has_swell_period_raw) goto done;
+            if (!ais_put(w, m->swell_period_raw, 6, "swell_period")) return false;
+            if (!m->has_swell_dir_raw) goto done;
+            if (!ais_put(w, m->swell_dir_raw, 9, "swell_dir")) return false;
+            if (!m->has_sea_state_raw) goto done;
+            if (!ais_put(w, m->sea_state_raw, 4, "sea_state")) return false;
+            if (!m->has_swell_sensor_raw) goto done;
+            if (!ais_put(w, m->swell_sensor_raw, 3, "swell_sensor")) return false;
+            if (!m->has_water_temp_raw) goto done;
+            if (!ais_put(w, m->water_temp_raw, 10, "water_temp")) return false;
+            if (!m->has_water_temp_depth_raw) goto done;
+            if (!ais_put(w, m->water_temp_depth_raw, 7, "water_temp_depth")) return false;
+            if (!m->has_water_sensor_raw) goto done;
+            if (!ais_put(w, m->water_sensor_raw, 3, "water_sensor")) return false;
+            if (!m->has_wave_height_raw) goto done;
+            if (!ais_put(w, m->wave_height_raw, 8, "wave_height")) return false;
+            if (!m->has_wave_period_raw) goto done;
+            if (!ais_put(w, m->wave_period_raw, 6, "wave_period")) return false;
+            if (!m->has_wave_dir_raw) goto done;
+            if (!ais_put(w, m->wave_dir_raw, 9, "wave_dir")) return false;
+            if (!m->has_wave_sensor_raw) goto done;
+            if (!ais_put(w, m->wave_sensor_raw, 3, "wave_sensor")) return false;
+            if (!m->has_sea_salinity_raw) goto done;
+            if (!ais_put(w, m->sea_salinity_raw, 9, "sea_salinity")) return false;
+        } else if (selector == 8u) {
+            if (!m->has_salinity_water_temp_raw) goto done;
+            if (!ais_put(w, m->salinity_water_temp_raw, 10, "salinity_water_temp")) return false;
+            if (!m->has_conductivity_raw) goto done;
+            if (!ais_put(w, m->conductivity_raw, 10, "conductivity")) return false;
+            if (!m->has_water_pressure_raw) goto done;
+            if (!ais_put(w, m->water_pressure_raw, 16, "water_pressure")) return false;
+            if (!m->has_salinity_raw) goto done;
+            if (!ais_put(w, m->salinity_raw, 9, "salinity")) return false;
+            if (!m->has_salinity_type) goto done;
+            if (!ais_put(w, m->salinity_type, 2, "salinity_type")) return false;
+            if (!m->has_salinity_sensor_raw) goto done;
+            if (!ais_put(w, m->salinity_sensor_raw, 3, "salinity_sensor")) return false;
+            if (!m->has_salinity_spare) goto done;
+            if (!ais_put(w, m->salinity_spare, 35, "salinity_spare")) return false;
+        } else if (selector == 9u) {
+            if (!m->has_air_temp_raw) goto done;
+            if (!ais_put_signed(w, m->air_temp_raw, 11, "air_temp")) return false;
+            if (!m->has_air_temp_sensor_raw) goto done;
+            if (!ais_put(w, m->air_temp_sensor_raw, 3, "air_temp_sensor")) return false;
+            if (!m->has_precipitation) goto done;
+            if (!ais_put(w, m->precipitation, 2, "precipitation")) return false;
+            if (!m->has_visibility_raw) goto done;
+            if (!ais_put(w, m->visibility_raw, 8, "visibility")) return false;
+            if (!m->has_dew_point_raw) goto done;
+            if (!ais_put(w, m->dew_point_raw, 10, "dew_point")) return false;
+            if (!m->has_dew_point_sensor_raw) goto done;
+            if (!ais_put(w, m->dew_point_sensor_raw, 3, "dew_point_sensor")) return false;
+            if (!m->has_air_pressure_raw) goto done;
+            if (!ais_put(w, m->air_pressure_raw, 9, "air_pressure")) return false;
+            if (!m->has_pressure_tendency_raw) goto done;
+            if (!ais_put(w, m->pressure_tendency_raw, 2, "pressure_tendency")) return false;
+            if (!m->has_pressure_sensor_raw) goto done;
+            if (!ais_put(w, m->pressure_sensor_raw, 3, "pressure_sensor")) return false;
+            if (!m->has_weather_salinity_raw) goto done;
+            if (!ais_put(w, m->weather_salinity_raw, 9, "weather_salinity")) return false;
+            if (!m->has_weather_spare) goto done;
+            if (!ais_put(w, m->weather_spare, 25, "weather_spare")) return false;
+        } else if (selector == 10u) {
+            if (!m->has_air_draught_raw) goto done;
+            if (!ais_put(w, m->air_draught_raw, 13, "air_draught")) return false;
+            if (!m->has_air_gap_raw) goto done;
+            if (!ais_put(w, m->air_gap_raw, 13, "air_gap")) return false;
+            if (!m->has_air_gap_trend_raw) goto done;
+            if (!ais_put(w, m->air_gap_trend_raw, 2, "air_gap_trend")) return false;
+            if (!m->has_forecast_air_gap_raw) goto done;
+            if (!ais_put(w, m->forecast_air_gap_raw, 13, "forecast_air_gap")) return false;
+            if (!m->has_air_gap_day_raw) goto done;
+            if (!ais_put(w, m->air_gap_day_raw, 5, "air_gap_day")) return false;
+            if (!m->has_air_gap_hour_raw) goto done;
+            if (!ais_put(w, m->air_gap_hour_raw, 5, "air_gap_hour")) return false;
+            if (!m->has_air_gap_minute_raw) goto done;
+            if (!ais_put(w, m->air_gap_minute_raw, 6, "air_gap_minute")) return false;
+            if (!m->has_air_gap_sensor_raw) goto done;
+            if (!ais_put(w, m->air_gap_sensor_raw, 3, "air_gap_sensor")) return false;
+            if (!m->has_air_gap_spare) goto done;
+            if (!ais_put(w, m->air_gap_spare, 25, "air_gap_spare")) return false;
+        } else if (selector == 11u) {
+            if (!m->has_wind2_speed_raw) goto done;
+            if (!ais_put(w, m->wind2_speed_raw, 7, "wind2_speed")) return false;
+            if (!m->has_wind2_gust_raw) goto done;
+            if (!ais_put(w, m->wind2_gust_raw, 7, "wind2_gust")) return false;
+            if (!m->has_wind2_dir_raw) goto done;
+            if (!ais_put(w, m->wind2_dir_raw, 9, "wind2_dir")) return false;
+            if (!m->has_averaging_time) goto done;
+            if (!ais_put(w, m->averaging_time, 6, "averaging_time")) return false;
+            if (!m->has_wind2_sensor_raw) goto done;
+            if (!ais_put(w, m->wind2_sensor_raw, 3, "wind2_sensor")) return false;
+            if (!m->has_wind2_fspeed_raw) goto done;
+            if (!ais_put(w, m->wind2_fspeed_raw, 7, "wind2_fspeed")) return false;
+            if (!m->has_wind2_fgust_raw) goto done;
+            if (!ais_put(w, m->wind2_fgust_raw, 7, "wind2_fgust")) return false;
+            if (!m->has_wind2_fdir_raw) goto done;
+            if (!ais_put(w, m->wind2_fdir_raw, 9, "wind2_fdir")) return false;
+            if (!m->has_wind2_hour_raw) goto done;
+            if (!ais_put(w, m->wind2_hour_raw, 5, "wind2_hour")) return false;
+            if (!m->has_wind2_minute_raw) goto done;
+            if (!ais_put(w, m->wind2_minute_raw, 6, "wind2_minute")) return false;
+            if (!m->has_wind2_duration_raw) goto done;
+            if (!ais_put(w, m->wind2_duration_raw, 8, "wind2_duration")) return false;
+            if (!m->has_wind2_spare) goto done;
+            if (!ais_put(w, m->wind2_spare, 11, "wind2_spare")) return false;
+        } else {
+            if (!m->has_reserved) goto done;
+            if (!ais_put_fixed(w, m->reserved, 85, false, "reserved")) return false;
+        }
+    }
+    done:;
+    return true;
+}
+
+static void ais_json_uscg_environmental_report(const nmea_ais_uscg_environmental_report *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "report_type", (long long)m->report_type);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_uscg_environmental_report_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_uscg_environmental_report_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_uscg_environmental_report_minute_specials, 1);
+    ais_json_int(j, "site", (long long)m->site);
+    if (m->has_version) {
+        ais_json_int(j, "version", (long long)m->version);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_uscg_environmental_report_lon_specials, 1);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_uscg_environmental_report_lat_specials, 1);
+    }
+    if (m->has_precision) {
+        ais_json_int(j, "precision", (long long)m->precision);
+    }
+    if (m->has_altitude_raw) {
+        ais_json_reading(j, "altitude", (int64_t)m->altitude_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_owner) {
+        ais_json_int(j, "owner", (long long)m->owner);
+    }
+    if (m->has_timeout) {
+        ais_json_int(j, "timeout", (long long)m->timeout);
+    }
+    if (m->has_location_spare) {
+        ais_json_int(j, "location_spare", (long long)m->location_spare);
+    }
+    if (m->has_name) {
+        ais_json_text(j, "name", m->name);
+    }
+    if (m->has_station_spare) {
+        ais_json_int(j, "station_spare", (long long)m->station_spare);
+    }
+    if (m->has_wspeed_raw) {
+        ais_json_reading(j, "wspeed", (int64_t)m->wspeed_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wspeed_specials, 1);
+    }
+    if (m->has_wgust_raw) {
+        ais_json_reading(j, "wgust", (int64_t)m->wgust_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wgust_specials, 1);
+    }
+    if (m->has_wdir_raw) {
+        ais_json_reading(j, "wdir", (int64_t)m->wdir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wdir_specials, 1);
+    }
+    if (m->has_wgustdir_raw) {
+        ais_json_reading(j, "wgustdir", (int64_t)m->wgustdir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wgustdir_specials, 1);
+    }
+    if (m->has_wind_sensor_raw) {
+        ais_json_code(j, "wind_sensor", ais_ais_sensor_description_id(m->wind_sensor_raw), m->wind_sensor_raw);
+    }
+    if (m->has_fwspeed_raw) {
+        ais_json_reading(j, "fwspeed", (int64_t)m->fwspeed_raw, 1.0, 0.0, false, ais_uscg_environmental_report_fwspeed_specials, 1);
+    }
+    if (m->has_fwgust_raw) {
+        ais_json_reading(j, "fwgust", (int64_t)m->fwgust_raw, 1.0, 0.0, false, ais_uscg_environmental_report_fwgust_specials, 1);
+    }
+    if (m->has_fwdir_raw) {
+        ais_json_reading(j, "fwdir", (int64_t)m->fwdir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_fwdir_specials, 1);
+    }
+    if (m->has_wind_day_raw) {
+        ais_json_reading(j, "wind_day", (int64_t)m->wind_day_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind_day_specials, 1);
+    }
+    if (m->has_wind_hour_raw) {
+        ais_json_reading(j, "wind_hour", (int64_t)m->wind_hour_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind_hour_specials, 1);
+    }
+    if (m->has_wind_minute_raw) {
+        ais_json_reading(j, "wind_minute", (int64_t)m->wind_minute_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind_minute_specials, 1);
+    }
+    if (m->has_wind_duration_raw) {
+        ais_json_reading(j, "wind_duration", (int64_t)m->wind_duration_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind_duration_specials, 1);
+    }
+    if (m->has_wind_spare) {
+        ais_json_int(j, "wind_spare", (long long)m->wind_spare);
+    }
+    if (m->has_absolute) {
+        ais_json_flag(j, "absolute", m->absolute);
+    }
+    if (m->has_level_raw) {
+        ais_json_reading(j, "level", (int64_t)m->level_raw, 100.0, 0.0, true, ais_uscg_environmental_report_level_specials, 1);
+    }
+    if (m->has_level_trend_raw) {
+        ais_json_reading(j, "level_trend", (int64_t)m->level_trend_raw, 1.0, 0.0, false, ais_uscg_environmental_report_level_trend_specials, 1);
+    }
+    if (m->has_datum_raw) {
+        ais_json_reading(j, "datum", (int64_t)m->datum_raw, 1.0, 0.0, false, ais_uscg_environmental_report_datum_specials, 1);
+    }
+    if (m->has_level_sensor_raw) {
+        ais_json_code(j, "level_sensor", ais_ais_sensor_description_id(m->level_sensor_raw), m->level_sensor_raw);
+    }
+    if (m->has_forecast_absolute) {
+        ais_json_flag(j, "forecast_absolute", m->forecast_absolute);
+    }
+    if (m->has_forecast_level_raw) {
+        ais_json_reading(j, "forecast_level", (int64_t)m->forecast_level_raw, 100.0, 0.0, true, ais_uscg_environmental_report_forecast_level_specials, 1);
+    }
+    if (m->has_level_day_raw) {
+        ais_json_reading(j, "level_day", (int64_t)m->level_day_raw, 1.0, 0.0, false, ais_uscg_environmental_report_level_day_specials, 1);
+    }
+    if (m->has_level_hour_raw) {
+        ais_json_reading(j, "level_hour", (int64_t)m->level_hour_raw, 1.0, 0.0, false, ais_uscg_environmental_report_level_hour_specials, 1);
+    }
+    if (m->has_level_minute_raw) {
+        ais_json_reading(j, "level_minute", (int64_t)m->level_minute_raw, 1.0, 0.0, false, ais_uscg_environmental_report_level_minute_specials, 1);
+    }
+    if (m->has_level_duration_raw) {
+        ais_json_reading(j, "level_duration", (int64_t)m->level_duration_raw, 1.0, 0.0, false, ais_uscg_environmental_report_level_duration_specials, 1);
+    }
+    if (m->has_level_spare) {
+        ais_json_int(j, "level_spare", (long long)m->level_spare);
+    }
+    if (m->has_cspeed1_raw) {
+        ais_json_reading(j, "cspeed1", (int64_t)m->cspeed1_raw, 10.0, 0.0, true, ais_uscg_environmental_report_cspeed1_specials, 1);
+    }
+    if (m->has_cdir1_raw) {
+        ais_json_reading(j, "cdir1", (int64_t)m->cdir1_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdir1_specials, 1);
+    }
+    if (m->has_cdepth1_raw) {
+        ais_json_reading(j, "cdepth1", (int64_t)m->cdepth1_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdepth1_specials, 1);
+    }
+    if (m->has_cspeed2_raw) {
+        ais_json_reading(j, "cspeed2", (int64_t)m->cspeed2_raw, 10.0, 0.0, true, ais_uscg_environmental_report_cspeed2_specials, 1);
+    }
+    if (m->has_cdir2_raw) {
+        ais_json_reading(j, "cdir2", (int64_t)m->cdir2_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdir2_specials, 1);
+    }
+    if (m->has_cdepth2_raw) {
+        ais_json_reading(j, "cdepth2", (int64_t)m->cdepth2_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdepth2_specials, 1);
+    }
+    if (m->has_cspeed3_raw) {
+        ais_json_reading(j, "cspeed3", (int64_t)m->cspeed3_raw, 10.0, 0.0, true, ais_uscg_environmental_report_cspeed3_specials, 1);
+    }
+    if (m->has_cdir3_raw) {
+        ais_json_reading(j, "cdir3", (int64_t)m->cdir3_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdir3_specials, 1);
+    }
+    if (m->has_cdepth3_raw) {
+        ais_json_reading(j, "cdepth3", (int64_t)m->cdepth3_raw, 1.0, 0.0, false, ais_uscg_environmental_report_cdepth3_specials, 1);
+    }
+    if (m->has_current_sensor_raw) {
+        ais_json_code(j, "current_sensor", ais_ais_sensor_description_id(m->current_sensor_raw), m->current_sensor_raw);
+    }
+    if (m->has_current_spare) {
+        ais_json_int(j, "current_spare", (long long)m->current_spare);
+    }
+    if (m->has_cnorth1_raw) {
+        ais_json_reading(j, "cnorth1", (int64_t)m->cnorth1_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_ceast1_raw) {
+        ais_json_reading(j, "ceast1", (int64_t)m->ceast1_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_cup1_raw) {
+        ais_json_reading(j, "cup1", (int64_t)m->cup1_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_c3depth1) {
+        ais_json_int(j, "c3depth1", (long long)m->c3depth1);
+    }
+    if (m->has_cnorth2_raw) {
+        ais_json_reading(j, "cnorth2", (int64_t)m->cnorth2_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_ceast2_raw) {
+        ais_json_reading(j, "ceast2", (int64_t)m->ceast2_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_cup2_raw) {
+        ais_json_reading(j, "cup2", (int64_t)m->cup2_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_c3depth2) {
+        ais_json_int(j, "c3depth2", (long long)m->c3depth2);
+    }
+    if (m->has_current3d_sensor_raw) {
+        ais_json_code(j, "current3d_sensor", ais_ais_sensor_description_id(m->current3d_sensor_raw), m->current3d_sensor_raw);
+    }
+    if (m->has_current3d_spare) {
+        ais_json_int(j, "current3d_spare", (long long)m->current3d_spare);
+    }
+    if (m->has_hbearing) {
+        ais_json_int(j, "hbearing", (long long)m->hbearing);
+    }
+    if (m->has_hdistance1) {
+        ais_json_int(j, "hdistance1", (long long)m->hdistance1);
+    }
+    if (m->has_hspeed1_raw) {
+        ais_json_reading(j, "hspeed1", (int64_t)m->hspeed1_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_hdir1) {
+        ais_json_int(j, "hdir1", (long long)m->hdir1);
+    }
+    if (m->has_hlevel1) {
+        ais_json_int(j, "hlevel1", (long long)m->hlevel1);
+    }
+    if (m->has_hdistance2) {
+        ais_json_int(j, "hdistance2", (long long)m->hdistance2);
+    }
+    if (m->has_hspeed2_raw) {
+        ais_json_reading(j, "hspeed2", (int64_t)m->hspeed2_raw, 10.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_hdir2) {
+        ais_json_int(j, "hdir2", (long long)m->hdir2);
+    }
+    if (m->has_hlevel2) {
+        ais_json_int(j, "hlevel2", (long long)m->hlevel2);
+    }
+    if (m->has_horizontal_sensor_raw) {
+        ais_json_code(j, "horizontal_sensor", ais_ais_sensor_description_id(m->horizontal_sensor_raw), m->horizontal_sensor_raw);
+    }
+    if (m->has_horizontal_spare) {
+        ais_json_int(j, "horizontal_spare", (long long)m->horizontal_spare);
+    }
+    if (m->has_swell_height_raw) {
+        ais_json_reading(j, "swell_height", (int64_t)m->swell_height_raw, 10.0, 0.0, true, ais_uscg_environmental_report_swell_height_specials, 1);
+    }
+    if (m->has_swell_period_raw) {
+        ais_json_reading(j, "swell_period", (int64_t)m->swell_period_raw, 1.0, 0.0, false, ais_uscg_environmental_report_swell_period_specials, 1);
+    }
+    if (m->has_swell_dir_raw) {
+        ais_json_reading(j, "swell_dir", (int64_t)m->swell_dir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_swell_dir_specials, 1);
+    }
+    if (m->has_sea_state_raw) {
+        ais_json_reading(j, "sea_state", (int64_t)m->sea_state_raw, 1.0, 0.0, false, ais_uscg_environmental_report_sea_state_specials, 1);
+    }
+    if (m->has_swell_sensor_raw) {
+        ais_json_code(j, "swell_sensor", ais_ais_sensor_description_id(m->swell_sensor_raw), m->swell_sensor_raw);
+    }
+    if (m->has_water_temp_raw) {
+        ais_json_reading(j, "water_temp", (int64_t)m->water_temp_raw, 10.0, -10.0, true, ais_uscg_environmental_report_water_temp_specials, 1);
+    }
+    if (m->has_water_temp_depth_raw) {
+        ais_json_reading(j, "water_temp_depth", (int64_t)m->water_temp_depth_raw, 10.0, 0.0, true, ais_uscg_environmental_report_water_temp_depth_specials, 1);
+    }
+    if (m->has_water_sensor_raw) {
+        ais_json_code(j, "water_sensor", ais_ais_sensor_description_id(m->water_sensor_raw), m->water_sensor_raw);
+    }
+    if (m->has_wave_height_raw) {
+        ais_json_reading(j, "wave_height", (int64_t)m->wave_height_raw, 10.0, 0.0, true, ais_uscg_environmental_report_wave_height_specials, 1);
+    }
+    if (m->has_wave_period_raw) {
+        ais_json_reading(j, "wave_period", (int64_t)m->wave_period_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wave_period_specials, 1);
+    }
+    if (m->has_wave_dir_raw) {
+        ais_json_reading(j, "wave_dir", (int64_t)m->wave_dir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wave_dir_specials, 1);
+    }
+    if (m->has_wave_sensor_raw) {
+        ais_json_code(j, "wave_sensor", ais_ais_sensor_description_id(m->wave_sensor_raw), m->wave_sensor_raw);
+    }
+    if (m->has_sea_salinity_raw) {
+        ais_json_reading(j, "sea_salinity", (int64_t)m->sea_salinity_raw, 10.0, 0.0, true, ais_uscg_environmental_report_sea_salinity_specials, 2);
+    }
+    if (m->has_salinity_water_temp_raw) {
+        ais_json_reading(j, "salinity_water_temp", (int64_t)m->salinity_water_temp_raw, 10.0, -10.0, true, ais_uscg_environmental_report_salinity_water_temp_specials, 1);
+    }
+    if (m->has_conductivity_raw) {
+        ais_json_reading(j, "conductivity", (int64_t)m->conductivity_raw, 100.0, 0.0, true, ais_uscg_environmental_report_conductivity_specials, 2);
+    }
+    if (m->has_water_pressure_raw) {
+        ais_json_reading(j, "water_pressure", (int64_t)m->water_pressure_raw, 10.0, 0.0, true, ais_uscg_environmental_report_water_pressure_specials, 2);
+    }
+    if (m->has_salinity_raw) {
+        ais_json_reading(j, "salinity", (int64_t)m->salinity_raw, 10.0, 0.0, true, ais_uscg_environmental_report_salinity_specials, 2);
+    }
+    if (m->has_salinity_type) {
+        ais_json_int(j, "salinity_type", (long long)m->salinity_type);
+    }
+    if (m->has_salinity_sensor_raw) {
+        ais_json_code(j, "salinity_sensor", ais_ais_sensor_description_id(m->salinity_sensor_raw), m->salinity_sensor_raw);
+    }
+    if (m->has_salinity_spare) {
+        ais_json_uint(j, "salinity_spare", (unsigned long long)m->salinity_spare);
+    }
+    if (m->has_air_temp_raw) {
+        ais_json_reading(j, "air_temp", (int64_t)m->air_temp_raw, 10.0, 0.0, true, ais_uscg_environmental_report_air_temp_specials, 1);
+    }
+    if (m->has_air_temp_sensor_raw) {
+        ais_json_code(j, "air_temp_sensor", ais_ais_sensor_description_id(m->air_temp_sensor_raw), m->air_temp_sensor_raw);
+    }
+    if (m->has_precipitation) {
+        ais_json_int(j, "precipitation", (long long)m->precipitation);
+    }
+    if (m->has_visibility_raw) {
+        ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, ais_uscg_environmental_report_visibility_specials, 2);
+    }
+    if (m->has_dew_point_raw) {
+        ais_json_reading(j, "dew_point", (int64_t)m->dew_point_raw, 10.0, -20.0, true, ais_uscg_environmental_report_dew_point_specials, 1);
+    }
+    if (m->has_dew_point_sensor_raw) {
+        ais_json_code(j, "dew_point_sensor", ais_ais_sensor_description_id(m->dew_point_sensor_raw), m->dew_point_sensor_raw);
+    }
+    if (m->has_air_pressure_raw) {
+        ais_json_reading(j, "air_pressure", (int64_t)m->air_pressure_raw, 1.0, 799.0, false, ais_uscg_environmental_report_air_pressure_specials, 1);
+    }
+    if (m->has_pressure_tendency_raw) {
+        ais_json_reading(j, "pressure_tendency", (int64_t)m->pressure_tendency_raw, 1.0, 0.0, false, ais_uscg_environmental_report_pressure_tendency_specials, 1);
+    }
+    if (m->has_pressure_sensor_raw) {
+        ais_json_code(j, "pressure_sensor", ais_ais_sensor_description_id(m->pressure_sensor_raw), m->pressure_sensor_raw);
+    }
+    if (m->has_weather_salinity_raw) {
+        ais_json_reading(j, "weather_salinity", (int64_t)m->weather_salinity_raw, 10.0, 0.0, true, ais_uscg_environmental_report_weather_salinity_specials, 2);
+    }
+    if (m->has_weather_spare) {
+        ais_json_int(j, "weather_spare", (long long)m->weather_spare);
+    }
+    if (m->has_air_draught_raw) {
+        ais_json_reading(j, "air_draught", (int64_t)m->air_draught_raw, 100.0, 0.0, true, ais_uscg_environmental_report_air_draught_specials, 1);
+    }
+    if (m->has_air_gap_raw) {
+        ais_json_reading(j, "air_gap", (int64_t)m->air_gap_raw, 100.0, 0.0, true, ais_uscg_environmental_report_air_gap_specials, 1);
+    }
+    if (m->has_air_gap_trend_raw) {
+        ais_json_reading(j, "air_gap_trend", (int64_t)m->air_gap_trend_raw, 1.0, 0.0, false, ais_uscg_environmental_report_air_gap_trend_specials, 1);
+    }
+    if (m->has_forecast_air_gap_raw) {
+        ais_json_reading(j, "forecast_air_gap", (int64_t)m->forecast_air_gap_raw, 100.0, 0.0, true, ais_uscg_environmental_report_forecast_air_gap_specials, 1);
+    }
+    if (m->has_air_gap_day_raw) {
+        ais_json_reading(j, "air_gap_day", (int64_t)m->air_gap_day_raw, 1.0, 0.0, false, ais_uscg_environmental_report_air_gap_day_specials, 1);
+    }
+    if (m->has_air_gap_hour_raw) {
+        ais_json_reading(j, "air_gap_hour", (int64_t)m->air_gap_hour_raw, 1.0, 0.0, false, ais_uscg_environmental_report_air_gap_hour_specials, 1);
+    }
+    if (m->has_air_gap_minute_raw) {
+        ais_json_reading(j, "air_gap_minute", (int64_t)m->air_gap_minute_raw, 1.0, 0.0, false, ais_uscg_environmental_report_air_gap_minute_specials, 1);
+    }
+    if (m->has_air_gap_sensor_raw) {
+        ais_json_code(j, "air_gap_sensor", ais_ais_sensor_description_id(m->air_gap_sensor_raw), m->air_gap_sensor_raw);
+    }
+    if (m->has_air_gap_spare) {
+        ais_json_int(j, "air_gap_spare", (long long)m->air_gap_spare);
+    }
+    if (m->has_wind2_speed_raw) {
+        ais_json_reading(j, "wind2_speed", (int64_t)m->wind2_speed_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_speed_specials, 1);
+    }
+    if (m->has_wind2_gust_raw) {
+        ais_json_reading(j, "wind2_gust", (int64_t)m->wind2_gust_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_gust_specials, 1);
+    }
+    if (m->has_wind2_dir_raw) {
+        ais_json_reading(j, "wind2_dir", (int64_t)m->wind2_dir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_dir_specials, 1);
+    }
+    if (m->has_averaging_time) {
+        ais_json_int(j, "averaging_time", (long long)m->averaging_time);
+    }
+    if (m->has_wind2_sensor_raw) {
+        ais_json_code(j, "wind2_sensor", ais_ais_sensor_description_id(m->wind2_sensor_raw), m->wind2_sensor_raw);
+    }
+    if (m->has_wind2_fspeed_raw) {
+        ais_json_reading(j, "wind2_fspeed", (int64_t)m->wind2_fspeed_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_fspeed_specials, 1);
+    }
+    if (m->has_wind2_fgust_raw) {
+        ais_json_reading(j, "wind2_fgust", (int64_t)m->wind2_fgust_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_fgust_specials, 1);
+    }
+    if (m->has_wind2_fdir_raw) {
+        ais_json_reading(j, "wind2_fdir", (int64_t)m->wind2_fdir_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_fdir_specials, 1);
+    }
+    if (m->has_wind2_hour_raw) {
+        ais_json_reading(j, "wind2_hour", (int64_t)m->wind2_hour_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_hour_specials, 1);
+    }
+    if (m->has_wind2_minute_raw) {
+        ais_json_reading(j, "wind2_minute", (int64_t)m->wind2_minute_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_minute_specials, 1);
+    }
+    if (m->has_wind2_duration_raw) {
+        ais_json_reading(j, "wind2_duration", (int64_t)m->wind2_duration_raw, 1.0, 0.0, false, ais_uscg_environmental_report_wind2_duration_specials, 1);
+    }
+    if (m->has_wind2_spare) {
+        ais_json_int(j, "wind2_spare", (long long)m->wind2_spare);
+    }
+    if (m->has_reserved) {
+        ais_json_bits(j, "reserved", m->reserved);
+    }
+}
+
+static bool ais_read_uscg_environmental(nmea_ais_reader *r, nmea_ais_uscg_environmental *m)
+{
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 8, 112, 0, "reports", &m->reports_count)) return false;
+        for (i = 0; i < m->reports_count; i++) if (!ais_read_uscg_environmental_report(r, &m->reports[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_uscg_environmental(const nmea_ais_uscg_environmental *m, nmea_ais_writer *w)
+{
+    {
+        size_t i;
+        for (i = 0; i < m->reports_count; i++) if (!ais_write_uscg_environmental_report(&m->reports[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_uscg_environmental(const nmea_ais_uscg_environmental *m, nmea_ais_json_out *j)
+{
+    {
+        size_t i;
+        ais_json_key(j, "reports");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->reports_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_uscg_environmental_report(&m->reports[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_vts_targets_target_lat_specials[] = {{5460000, "not_available"}};
 static const nmea_ais_special ais_vts_targets_target_lon_specials[] = {{10860000, "not_available"}};
 static const nmea_ais_special ais_vts_targets_target_course_specials[] = {{360, "not_available"}};
@@ -4082,46 +6591,113 @@ static bool ais_read_vts_targets_target(nmea_ais_reader *r, nmea_ais_vts_targets
     int64_t signed_raw;
     if (!ais_take(r, 2, "idtype", &raw)) return false;
     m->idtype = (uint8_t)raw;
-    if (!ais_take(r, 42, "id", &raw)) return false;
-    m->id = (uint64_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->idtype;
+        if (selector == 0u) {
+            if (!ais_take(r, 42, "mmsi", &raw)) return false;
+            m->mmsi = (uint64_t)raw;
+            m->has_mmsi = true;
+        } else if (selector == 1u) {
+            if (!ais_take(r, 42, "imo", &raw)) return false;
+            m->imo = (uint64_t)raw;
+            m->has_imo = true;
+        } else if (selector == 2u) {
+            if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
+            m->has_callsign = true;
+        } else {
+            if (!ais_take_bits(r, 42, "other", &m->other)) return false;
+            m->has_other = true;
+        }
+    }
     if (!ais_take(r, 4, "spare", &raw)) return false;
     m->spare = (uint8_t)raw;
+    m->has_spare = true;
     if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
     m->lat_raw = (int32_t)signed_raw;
+    m->has_lat_raw = true;
     if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
     m->lon_raw = (int32_t)signed_raw;
+    m->has_lon_raw = true;
     if (!ais_take(r, 9, "course", &raw)) return false;
     m->course_raw = (uint16_t)raw;
+    m->has_course_raw = true;
     if (!ais_take(r, 6, "second", &raw)) return false;
     m->second_raw = (uint8_t)raw;
+    m->has_second_raw = true;
     if (!ais_take(r, 8, "speed", &raw)) return false;
     m->speed_raw = (uint8_t)raw;
+    m->has_speed_raw = true;
     return true;
 }
 
 static bool ais_write_vts_targets_target(const nmea_ais_vts_targets_target *m, nmea_ais_writer *w)
 {
     if (!ais_put(w, m->idtype, 2, "idtype")) return false;
-    if (!ais_put(w, m->id, 42, "id")) return false;
+    {
+        uint64_t selector = (uint64_t)m->idtype;
+        if (selector == 0u) {
+            if (!m->has_mmsi) goto done;
+            if (!ais_put(w, m->mmsi, 42, "mmsi")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_imo) goto done;
+            if (!ais_put(w, m->imo, 42, "imo")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_callsign) goto done;
+            if (!ais_put_fixed(w, m->callsign, 42, true, "callsign")) return false;
+        } else {
+            if (!m->has_other) goto done;
+            if (!ais_put_fixed(w, m->other, 42, true, "other")) return false;
+        }
+    }
+    if (!m->has_spare) goto done;
     if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!m->has_lat_raw) goto done;
     if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!m->has_lon_raw) goto done;
     if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!m->has_course_raw) goto done;
     if (!ais_put(w, m->course_raw, 9, "course")) return false;
+    if (!m->has_second_raw) goto done;
     if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!m->has_speed_raw) goto done;
     if (!ais_put(w, m->speed_raw, 8, "speed")) return false;
+    done:;
     return true;
 }
 
 static void ais_json_vts_targets_target(const nmea_ais_vts_targets_target *m, nmea_ais_json_out *j)
 {
     ais_json_int(j, "idtype", (long long)m->idtype);
-    ais_json_int(j, "id", (long long)m->id);
-    ais_json_int(j, "spare", (long long)m->spare);
-    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_target_lat_specials, 1);
-    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_target_lon_specials, 1);
-    ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_target_course_specials, 1);
-    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_target_second_specials, 1);
-    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_target_speed_specials, 1);
+    if (m->has_mmsi) {
+        ais_json_uint(j, "mmsi", (unsigned long long)m->mmsi);
+    }
+    if (m->has_imo) {
+        ais_json_uint(j, "imo", (unsigned long long)m->imo);
+    }
+    if (m->has_callsign) {
+        ais_json_text(j, "callsign", m->callsign);
+    }
+    if (m->has_other) {
+        ais_json_text(j, "other", m->other);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_target_lat_specials, 1);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_target_lon_specials, 1);
+    }
+    if (m->has_course_raw) {
+        ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_target_course_specials, 1);
+    }
+    if (m->has_second_raw) {
+        ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_target_second_specials, 1);
+    }
+    if (m->has_speed_raw) {
+        ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_target_speed_specials, 1);
+    }
 }
 
 static bool ais_read_vts_targets(nmea_ais_reader *r, nmea_ais_vts_targets *m)
@@ -4173,46 +6749,113 @@ static bool ais_read_vts_targets_imo289_target(nmea_ais_reader *r, nmea_ais_vts_
     int64_t signed_raw;
     if (!ais_take(r, 2, "idtype", &raw)) return false;
     m->idtype = (uint8_t)raw;
-    if (!ais_take(r, 42, "id", &raw)) return false;
-    m->id = (uint64_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->idtype;
+        if (selector == 0u) {
+            if (!ais_take(r, 42, "mmsi", &raw)) return false;
+            m->mmsi = (uint64_t)raw;
+            m->has_mmsi = true;
+        } else if (selector == 1u) {
+            if (!ais_take(r, 42, "imo", &raw)) return false;
+            m->imo = (uint64_t)raw;
+            m->has_imo = true;
+        } else if (selector == 2u) {
+            if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
+            m->has_callsign = true;
+        } else {
+            if (!ais_take_bits(r, 42, "other", &m->other)) return false;
+            m->has_other = true;
+        }
+    }
     if (!ais_take(r, 4, "spare", &raw)) return false;
     m->spare = (uint8_t)raw;
+    m->has_spare = true;
     if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
     m->lat_raw = (int32_t)signed_raw;
+    m->has_lat_raw = true;
     if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
     m->lon_raw = (int32_t)signed_raw;
+    m->has_lon_raw = true;
     if (!ais_take(r, 9, "course", &raw)) return false;
     m->course_raw = (uint16_t)raw;
+    m->has_course_raw = true;
     if (!ais_take(r, 6, "second", &raw)) return false;
     m->second_raw = (uint8_t)raw;
+    m->has_second_raw = true;
     if (!ais_take(r, 8, "speed", &raw)) return false;
     m->speed_raw = (uint8_t)raw;
+    m->has_speed_raw = true;
     return true;
 }
 
 static bool ais_write_vts_targets_imo289_target(const nmea_ais_vts_targets_imo289_target *m, nmea_ais_writer *w)
 {
     if (!ais_put(w, m->idtype, 2, "idtype")) return false;
-    if (!ais_put(w, m->id, 42, "id")) return false;
+    {
+        uint64_t selector = (uint64_t)m->idtype;
+        if (selector == 0u) {
+            if (!m->has_mmsi) goto done;
+            if (!ais_put(w, m->mmsi, 42, "mmsi")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_imo) goto done;
+            if (!ais_put(w, m->imo, 42, "imo")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_callsign) goto done;
+            if (!ais_put_fixed(w, m->callsign, 42, true, "callsign")) return false;
+        } else {
+            if (!m->has_other) goto done;
+            if (!ais_put_fixed(w, m->other, 42, true, "other")) return false;
+        }
+    }
+    if (!m->has_spare) goto done;
     if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!m->has_lat_raw) goto done;
     if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!m->has_lon_raw) goto done;
     if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!m->has_course_raw) goto done;
     if (!ais_put(w, m->course_raw, 9, "course")) return false;
+    if (!m->has_second_raw) goto done;
     if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!m->has_speed_raw) goto done;
     if (!ais_put(w, m->speed_raw, 8, "speed")) return false;
+    done:;
     return true;
 }
 
 static void ais_json_vts_targets_imo289_target(const nmea_ais_vts_targets_imo289_target *m, nmea_ais_json_out *j)
 {
     ais_json_int(j, "idtype", (long long)m->idtype);
-    ais_json_int(j, "id", (long long)m->id);
-    ais_json_int(j, "spare", (long long)m->spare);
-    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lat_specials, 1);
-    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lon_specials, 1);
-    ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_course_specials, 1);
-    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_second_specials, 1);
-    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_speed_specials, 1);
+    if (m->has_mmsi) {
+        ais_json_uint(j, "mmsi", (unsigned long long)m->mmsi);
+    }
+    if (m->has_imo) {
+        ais_json_uint(j, "imo", (unsigned long long)m->imo);
+    }
+    if (m->has_callsign) {
+        ais_json_text(j, "callsign", m->callsign);
+    }
+    if (m->has_other) {
+        ais_json_text(j, "other", m->other);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lat_specials, 1);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lon_specials, 1);
+    }
+    if (m->has_course_raw) {
+        ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_course_specials, 1);
+    }
+    if (m->has_second_raw) {
+        ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_second_specials, 1);
+    }
+    if (m->has_speed_raw) {
+        ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_speed_specials, 1);
+    }
 }
 
 static bool ais_read_vts_targets_imo289(nmea_ais_reader *r, nmea_ais_vts_targets_imo289 *m)
@@ -5578,7 +8221,6 @@ static void ais_json_long_range_broadcast(const nmea_ais_long_range_broadcast *m
 static bool ais_read_multi_slot_binary(nmea_ais_reader *r, nmea_ais_multi_slot_binary *m)
 {
     uint64_t raw;
-    uint64_t selector;
     if (!ais_take(r, 6, "message_type", &raw)) return false;
     m->message_type = (uint8_t)raw;
     if (!ais_take(r, 2, "repeat", &raw)) return false;
@@ -5589,22 +8231,26 @@ static bool ais_read_multi_slot_binary(nmea_ais_reader *r, nmea_ais_multi_slot_b
     m->addressed = raw == 1;
     if (!ais_take(r, 1, "structured", &raw)) return false;
     m->structured = raw == 1;
-    if (!ais_peek(r, 38, 1, "addressed", &selector)) return false;
-    if (selector == 1u) {
-        if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
-        m->dest_mmsi = (uint32_t)raw;
-        m->has_dest_mmsi = true;
-    } else if (selector == 0u) {
+    {
+        uint64_t selector = (uint64_t)m->addressed;
+        if (selector == 1u) {
+            if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+            m->dest_mmsi = (uint32_t)raw;
+            m->has_dest_mmsi = true;
+        } else if (selector == 0u) {
+        }
     }
-    if (!ais_peek(r, 39, 1, "structured", &selector)) return false;
-    if (selector == 1u) {
-        if (!ais_take(r, 10, "dac", &raw)) return false;
-        m->dac = (uint16_t)raw;
-        m->has_dac = true;
-        if (!ais_take(r, 6, "fid", &raw)) return false;
-        m->fid = (uint8_t)raw;
-        m->has_fid = true;
-    } else if (selector == 0u) {
+    {
+        uint64_t selector = (uint64_t)m->structured;
+        if (selector == 1u) {
+            if (!ais_take(r, 10, "dac", &raw)) return false;
+            m->dac = (uint16_t)raw;
+            m->has_dac = true;
+            if (!ais_take(r, 6, "fid", &raw)) return false;
+            m->fid = (uint8_t)raw;
+            m->has_fid = true;
+        } else if (selector == 0u) {
+        }
     }
     if (!ais_take_bits(r, (ais_remaining(r) > 20 ? ais_remaining(r) - 20 : 0), "data", &m->data)) return false;
     m->has_data = true;
@@ -5892,7 +8538,6 @@ static void ais_json_sar_aircraft_report(const nmea_ais_sar_aircraft_report *m, 
 static bool ais_read_single_slot_binary(nmea_ais_reader *r, nmea_ais_single_slot_binary *m)
 {
     uint64_t raw;
-    uint64_t selector;
     if (!ais_take(r, 6, "message_type", &raw)) return false;
     m->message_type = (uint8_t)raw;
     if (!ais_take(r, 2, "repeat", &raw)) return false;
@@ -5903,22 +8548,26 @@ static bool ais_read_single_slot_binary(nmea_ais_reader *r, nmea_ais_single_slot
     m->addressed = raw == 1;
     if (!ais_take(r, 1, "structured", &raw)) return false;
     m->structured = raw == 1;
-    if (!ais_peek(r, 38, 1, "addressed", &selector)) return false;
-    if (selector == 1u) {
-        if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
-        m->dest_mmsi = (uint32_t)raw;
-        m->has_dest_mmsi = true;
-    } else if (selector == 0u) {
+    {
+        uint64_t selector = (uint64_t)m->addressed;
+        if (selector == 1u) {
+            if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+            m->dest_mmsi = (uint32_t)raw;
+            m->has_dest_mmsi = true;
+        } else if (selector == 0u) {
+        }
     }
-    if (!ais_peek(r, 39, 1, "structured", &selector)) return false;
-    if (selector == 1u) {
-        if (!ais_take(r, 10, "dac", &raw)) return false;
-        m->dac = (uint16_t)raw;
-        m->has_dac = true;
-        if (!ais_take(r, 6, "fid", &raw)) return false;
-        m->fid = (uint8_t)raw;
-        m->has_fid = true;
-    } else if (selector == 0u) {
+    {
+        uint64_t selector = (uint64_t)m->structured;
+        if (selector == 1u) {
+            if (!ais_take(r, 10, "dac", &raw)) return false;
+            m->dac = (uint16_t)raw;
+            m->has_dac = true;
+            if (!ais_take(r, 6, "fid", &raw)) return false;
+            m->fid = (uint8_t)raw;
+            m->has_fid = true;
+        } else if (selector == 0u) {
+        }
     }
     if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false;
     m->has_data = true;
@@ -5986,7 +8635,6 @@ static const nmea_ais_special ais_static_data_report_to_starboard_specials[] = {
 static bool ais_read_static_data_report(nmea_ais_reader *r, nmea_ais_static_data_report *m)
 {
     uint64_t raw;
-    uint64_t selector;
     if (!ais_take(r, 6, "message_type", &raw)) return false;
     m->message_type = (uint8_t)raw;
     if (!ais_take(r, 2, "repeat", &raw)) return false;
@@ -5995,56 +8643,60 @@ static bool ais_read_static_data_report(nmea_ais_reader *r, nmea_ais_static_data
     m->mmsi = (uint32_t)raw;
     if (!ais_take(r, 2, "partno", &raw)) return false;
     m->partno = (uint8_t)raw;
-    if (!ais_peek(r, 38, 2, "partno", &selector)) return false;
-    if (selector == 0u) {
-        if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false;
-        m->has_shipname = true;
-        if (ais_remaining(r) < 8) goto done;
-        if (!ais_take(r, 8, "spare", &raw)) return false;
-        m->spare = (uint8_t)raw;
-        m->has_spare = true;
-    } else if (selector == 1u) {
-        if (!ais_take(r, 8, "shiptype", &raw)) return false;
-        m->shiptype_raw = (uint8_t)raw;
-        m->has_shiptype_raw = true;
-        if (!ais_take_bits(r, 18, "vendorid", &m->vendorid)) return false;
-        m->has_vendorid = true;
-        if (!ais_take(r, 4, "model", &raw)) return false;
-        m->model = (uint8_t)raw;
-        m->has_model = true;
-        if (!ais_take(r, 20, "serial", &raw)) return false;
-        m->serial = (uint32_t)raw;
-        m->has_serial = true;
-        if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
-        m->has_callsign = true;
-        if (!ais_peek(r, 8, 30, "mmsi", &selector)) return false;
-        if ((selector >= 980000000u && selector <= 989999999u)) {
-            if (!ais_take(r, 30, "mothership_mmsi", &raw)) return false;
-            m->mothership_mmsi = (uint32_t)raw;
-            m->has_mothership_mmsi = true;
+    {
+        uint64_t selector = (uint64_t)m->partno;
+        if (selector == 0u) {
+            if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false;
+            m->has_shipname = true;
+            if (ais_remaining(r) < 8) goto done;
+            if (!ais_take(r, 8, "spare", &raw)) return false;
+            m->spare = (uint8_t)raw;
+            m->has_spare = true;
+        } else if (selector == 1u) {
+            if (!ais_take(r, 8, "shiptype", &raw)) return false;
+            m->shiptype_raw = (uint8_t)raw;
+            m->has_shiptype_raw = true;
+            if (!ais_take_bits(r, 18, "vendorid", &m->vendorid)) return false;
+            m->has_vendorid = true;
+            if (!ais_take(r, 4, "model", &raw)) return false;
+            m->model = (uint8_t)raw;
+            m->has_model = true;
+            if (!ais_take(r, 20, "serial", &raw)) return false;
+            m->serial = (uint32_t)raw;
+            m->has_serial = true;
+            if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
+            m->has_callsign = true;
+            {
+                uint64_t selector = (uint64_t)m->mmsi;
+                if ((selector >= 980000000u && selector <= 989999999u)) {
+                    if (!ais_take(r, 30, "mothership_mmsi", &raw)) return false;
+                    m->mothership_mmsi = (uint32_t)raw;
+                    m->has_mothership_mmsi = true;
+                } else {
+                    if (!ais_take(r, 9, "to_bow", &raw)) return false;
+                    m->to_bow_raw = (uint16_t)raw;
+                    m->has_to_bow_raw = true;
+                    if (!ais_take(r, 9, "to_stern", &raw)) return false;
+                    m->to_stern_raw = (uint16_t)raw;
+                    m->has_to_stern_raw = true;
+                    if (!ais_take(r, 6, "to_port", &raw)) return false;
+                    m->to_port_raw = (uint8_t)raw;
+                    m->has_to_port_raw = true;
+                    if (!ais_take(r, 6, "to_starboard", &raw)) return false;
+                    m->to_starboard_raw = (uint8_t)raw;
+                    m->has_to_starboard_raw = true;
+                }
+            }
+            if (!ais_take(r, 4, "epfd", &raw)) return false;
+            m->epfd_raw = (uint8_t)raw;
+            m->has_epfd_raw = true;
+            if (!ais_take(r, 2, "spare2", &raw)) return false;
+            m->spare2 = (uint8_t)raw;
+            m->has_spare2 = true;
         } else {
-            if (!ais_take(r, 9, "to_bow", &raw)) return false;
-            m->to_bow_raw = (uint16_t)raw;
-            m->has_to_bow_raw = true;
-            if (!ais_take(r, 9, "to_stern", &raw)) return false;
-            m->to_stern_raw = (uint16_t)raw;
-            m->has_to_stern_raw = true;
-            if (!ais_take(r, 6, "to_port", &raw)) return false;
-            m->to_port_raw = (uint8_t)raw;
-            m->has_to_port_raw = true;
-            if (!ais_take(r, 6, "to_starboard", &raw)) return false;
-            m->to_starboard_raw = (uint8_t)raw;
-            m->has_to_starboard_raw = true;
+            if (!ais_take_bits(r, ais_remaining(r), "other_part", &m->other_part)) return false;
+            m->has_other_part = true;
         }
-        if (!ais_take(r, 4, "epfd", &raw)) return false;
-        m->epfd_raw = (uint8_t)raw;
-        m->has_epfd_raw = true;
-        if (!ais_take(r, 2, "spare2", &raw)) return false;
-        m->spare2 = (uint8_t)raw;
-        m->has_spare2 = true;
-    } else {
-        if (!ais_take_bits(r, ais_remaining(r), "other_part", &m->other_part)) return false;
-        m->has_other_part = true;
     }
     done: m->trailing = ais_rest(r);
     return true;
@@ -6315,7 +8967,11 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 {
     nmea_ais_error ignored;
     nmea_ais_reader r = ais_bits_reader(data, &ignored);
-    if (dac == 1u && fid == 22u && (message_type == 8u)) {
+    if (dac == 1u && fid == 15u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_AIR_DRAUGHT;
+        return ais_read_air_draught(&r, &app->as.air_draught);
+    }
+    if ((dac == 1u && fid == 22u && (message_type == 8u)) || (dac == 1u && fid == 23u && (message_type == 6u))) {
         app->layout = NMEA_AIS_APP_AREA_NOTICE;
         return ais_read_area_notice(&r, &app->as.area_notice);
     }
@@ -6323,9 +8979,17 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
     }
+    if (dac == 1u && fid == 20u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_BERTHING_DATA;
+        return ais_read_berthing_data(&r, &app->as.berthing_data);
+    }
     if (dac == 1u && fid == 18u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_CLEARANCE_TIME;
         return ais_read_clearance_time(&r, &app->as.clearance_time);
+    }
+    if (dac == 1u && fid == 25u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_DANGEROUS_CARGO;
+        return ais_read_dangerous_cargo(&r, &app->as.dangerous_cargo);
     }
     if (dac == 1u && fid == 12u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_DANGEROUS_CARGO_IMO236;
@@ -6335,9 +8999,17 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_ENVIRONMENTAL;
         return ais_read_environmental(&r, &app->as.environmental);
     }
+    if (dac == 1u && fid == 13u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_FAIRWAY_CLOSED;
+        return ais_read_fairway_closed(&r, &app->as.fairway_closed);
+    }
     if (dac == 1u && fid == 2u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_FUNCTION_INTERROGATION;
         return ais_read_function_interrogation(&r, &app->as.function_interrogation);
+    }
+    if (dac == 200u && fid == 23u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_INLAND_EMMA_WARNING;
+        return ais_read_inland_emma_warning(&r, &app->as.inland_emma_warning);
     }
     if (dac == 200u && fid == 21u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_INLAND_ETA;
@@ -6375,6 +9047,18 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_PERSONS_ON_BOARD;
         return ais_read_persons_on_board(&r, &app->as.persons_on_board);
     }
+    if ((dac == 1u && fid == 27u && (message_type == 8u)) || (dac == 1u && fid == 28u && (message_type == 6u))) {
+        app->layout = NMEA_AIS_APP_ROUTE_INFORMATION;
+        return ais_read_route_information(&r, &app->as.route_information);
+    }
+    if (dac == 1u && fid == 24u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_SHIP_STATIC_VOYAGE;
+        return ais_read_ship_static_voyage(&r, &app->as.ship_static_voyage);
+    }
+    if (dac == 1u && fid == 21u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_SHIP_WEATHER;
+        return ais_read_ship_weather(&r, &app->as.ship_weather);
+    }
     if (dac == 1u && fid == 30u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_TEXT_ADDRESSED;
         return ais_read_text_addressed(&r, &app->as.text_addressed);
@@ -6391,6 +9075,14 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_TIDAL_WINDOW_IMO236;
         return ais_read_tidal_window_imo236(&r, &app->as.tidal_window_imo236);
     }
+    if (dac == 1u && fid == 19u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_TRAFFIC_SIGNAL;
+        return ais_read_traffic_signal(&r, &app->as.traffic_signal);
+    }
+    if (dac == 367u && fid == 33u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_USCG_ENVIRONMENTAL;
+        return ais_read_uscg_environmental(&r, &app->as.uscg_environmental);
+    }
     if (dac == 1u && fid == 16u && (message_type == 8u)) {
         app->layout = NMEA_AIS_APP_VTS_TARGETS;
         return ais_read_vts_targets(&r, &app->as.vts_targets);
@@ -6405,18 +9097,28 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AIR_DRAUGHT:
+        return ais_write_air_draught(&app->as.air_draught, w);
     case NMEA_AIS_APP_AREA_NOTICE:
         return ais_write_area_notice(&app->as.area_notice, w);
     case NMEA_AIS_APP_ATON_MONITORING:
         return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
+    case NMEA_AIS_APP_BERTHING_DATA:
+        return ais_write_berthing_data(&app->as.berthing_data, w);
     case NMEA_AIS_APP_CLEARANCE_TIME:
         return ais_write_clearance_time(&app->as.clearance_time, w);
+    case NMEA_AIS_APP_DANGEROUS_CARGO:
+        return ais_write_dangerous_cargo(&app->as.dangerous_cargo, w);
     case NMEA_AIS_APP_DANGEROUS_CARGO_IMO236:
         return ais_write_dangerous_cargo_imo236(&app->as.dangerous_cargo_imo236, w);
     case NMEA_AIS_APP_ENVIRONMENTAL:
         return ais_write_environmental(&app->as.environmental, w);
+    case NMEA_AIS_APP_FAIRWAY_CLOSED:
+        return ais_write_fairway_closed(&app->as.fairway_closed, w);
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         return ais_write_function_interrogation(&app->as.function_interrogation, w);
+    case NMEA_AIS_APP_INLAND_EMMA_WARNING:
+        return ais_write_inland_emma_warning(&app->as.inland_emma_warning, w);
     case NMEA_AIS_APP_INLAND_ETA:
         return ais_write_inland_eta(&app->as.inland_eta, w);
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
@@ -6435,6 +9137,12 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
         return ais_write_meteo_hydro_imo236(&app->as.meteo_hydro_imo236, w);
     case NMEA_AIS_APP_PERSONS_ON_BOARD:
         return ais_write_persons_on_board(&app->as.persons_on_board, w);
+    case NMEA_AIS_APP_ROUTE_INFORMATION:
+        return ais_write_route_information(&app->as.route_information, w);
+    case NMEA_AIS_APP_SHIP_STATIC_VOYAGE:
+        return ais_write_ship_static_voyage(&app->as.ship_static_voyage, w);
+    case NMEA_AIS_APP_SHIP_WEATHER:
+        return ais_write_ship_weather(&app->as.ship_weather, w);
     case NMEA_AIS_APP_TEXT_ADDRESSED:
         return ais_write_text_addressed(&app->as.text_addressed, w);
     case NMEA_AIS_APP_TEXT_BROADCAST:
@@ -6443,6 +9151,10 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
         return ais_write_tidal_window(&app->as.tidal_window, w);
     case NMEA_AIS_APP_TIDAL_WINDOW_IMO236:
         return ais_write_tidal_window_imo236(&app->as.tidal_window_imo236, w);
+    case NMEA_AIS_APP_TRAFFIC_SIGNAL:
+        return ais_write_traffic_signal(&app->as.traffic_signal, w);
+    case NMEA_AIS_APP_USCG_ENVIRONMENTAL:
+        return ais_write_uscg_environmental(&app->as.uscg_environmental, w);
     case NMEA_AIS_APP_VTS_TARGETS:
         return ais_write_vts_targets(&app->as.vts_targets, w);
     case NMEA_AIS_APP_VTS_TARGETS_IMO289:
@@ -6454,14 +9166,23 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AIR_DRAUGHT:
+        ais_json_air_draught(&app->as.air_draught, j);
+        break;
     case NMEA_AIS_APP_AREA_NOTICE:
         ais_json_area_notice(&app->as.area_notice, j);
         break;
     case NMEA_AIS_APP_ATON_MONITORING:
         ais_json_aton_monitoring(&app->as.aton_monitoring, j);
         break;
+    case NMEA_AIS_APP_BERTHING_DATA:
+        ais_json_berthing_data(&app->as.berthing_data, j);
+        break;
     case NMEA_AIS_APP_CLEARANCE_TIME:
         ais_json_clearance_time(&app->as.clearance_time, j);
+        break;
+    case NMEA_AIS_APP_DANGEROUS_CARGO:
+        ais_json_dangerous_cargo(&app->as.dangerous_cargo, j);
         break;
     case NMEA_AIS_APP_DANGEROUS_CARGO_IMO236:
         ais_json_dangerous_cargo_imo236(&app->as.dangerous_cargo_imo236, j);
@@ -6469,8 +9190,14 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
     case NMEA_AIS_APP_ENVIRONMENTAL:
         ais_json_environmental(&app->as.environmental, j);
         break;
+    case NMEA_AIS_APP_FAIRWAY_CLOSED:
+        ais_json_fairway_closed(&app->as.fairway_closed, j);
+        break;
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         ais_json_function_interrogation(&app->as.function_interrogation, j);
+        break;
+    case NMEA_AIS_APP_INLAND_EMMA_WARNING:
+        ais_json_inland_emma_warning(&app->as.inland_emma_warning, j);
         break;
     case NMEA_AIS_APP_INLAND_ETA:
         ais_json_inland_eta(&app->as.inland_eta, j);
@@ -6499,6 +9226,15 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
     case NMEA_AIS_APP_PERSONS_ON_BOARD:
         ais_json_persons_on_board(&app->as.persons_on_board, j);
         break;
+    case NMEA_AIS_APP_ROUTE_INFORMATION:
+        ais_json_route_information(&app->as.route_information, j);
+        break;
+    case NMEA_AIS_APP_SHIP_STATIC_VOYAGE:
+        ais_json_ship_static_voyage(&app->as.ship_static_voyage, j);
+        break;
+    case NMEA_AIS_APP_SHIP_WEATHER:
+        ais_json_ship_weather(&app->as.ship_weather, j);
+        break;
     case NMEA_AIS_APP_TEXT_ADDRESSED:
         ais_json_text_addressed(&app->as.text_addressed, j);
         break;
@@ -6510,6 +9246,12 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
         break;
     case NMEA_AIS_APP_TIDAL_WINDOW_IMO236:
         ais_json_tidal_window_imo236(&app->as.tidal_window_imo236, j);
+        break;
+    case NMEA_AIS_APP_TRAFFIC_SIGNAL:
+        ais_json_traffic_signal(&app->as.traffic_signal, j);
+        break;
+    case NMEA_AIS_APP_USCG_ENVIRONMENTAL:
+        ais_json_uscg_environmental(&app->as.uscg_environmental, j);
         break;
     case NMEA_AIS_APP_VTS_TARGETS:
         ais_json_vts_targets(&app->as.vts_targets, j);

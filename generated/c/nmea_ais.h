@@ -12,17 +12,23 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
-//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
-//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/air_draught.yaml, spec/ais/applications/area_notice.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/berthing_data.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo.yaml,
+//   spec/ais/applications/dangerous_cargo_imo236.yaml, spec/ais/applications/environmental.yaml,
+//   spec/ais/applications/fairway_closed.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_emma_warning.yaml, spec/ais/applications/inland_eta.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml, spec/ais/applications/inland_rta.yaml,
+//   spec/ais/applications/inland_signal_status.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
 //   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
-//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
-//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
-//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest 6541cbe400d5cd60)
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/route_information.yaml,
+//   spec/ais/applications/ship_static_voyage.yaml, spec/ais/applications/ship_weather.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml,
+//   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
+//   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
+//   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
+//   (digest 9b1aa6eb2160a1b1)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -212,6 +218,13 @@ void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void 
    into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
 size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
+/* Air draught (extended ship static data): AIS application DAC 1 FI 15 (in type 8). */
+typedef struct {
+    uint16_t air_draught_raw; /* Air draught [metres] */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_air_draught;
+
 /* One entry of area_notice_subarea. */
 typedef struct {
     uint8_t shape_raw; /* Shape */
@@ -283,7 +296,7 @@ typedef struct {
     bool has_reserved;
 } nmea_ais_area_notice_subarea;
 
-/* Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8). */
+/* Area notice: AIS application DAC 1 FI 22 (in type 8) or DAC 1 FI 23 (in type 6). */
 typedef struct {
     uint16_t linkage; /* Message linkage id */
     uint8_t notice_raw; /* Notice description */
@@ -312,6 +325,24 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_aton_monitoring;
 
+/* Berthing data: AIS application DAC 1 FI 20 (in type 6). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    uint16_t berth_length_raw; /* Berth length [metres] */
+    uint8_t berth_depth_raw; /* Water depth at the berth [metres] */
+    uint8_t position_raw; /* Mooring position */
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    bool services_known; /* Services availability */
+    nmea_ais_bits services; /* Services */
+    nmea_ais_bits berth_name; /* Name of the berth */
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_berthing_data;
+
 /* Clearance time to enter port: AIS application DAC 1 FI 18 (in type 6). */
 typedef struct {
     uint16_t linkage_raw; /* Message linkage ID */
@@ -326,6 +357,42 @@ typedef struct {
     uint64_t spare; /* Spare */
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_clearance_time;
+
+/* One entry of dangerous_cargo_cargo. */
+typedef struct {
+    uint8_t code_raw; /* Code under which the cargo is carried */
+    uint8_t imdg_raw; /* IMDG class or division */
+    bool has_imdg_raw;
+    uint8_t imdg_spare; /* Spare */
+    bool has_imdg_spare;
+    uint16_t un_raw; /* UN number */
+    bool has_un_raw;
+    uint8_t bc_raw; /* BC Code group */
+    bool has_bc_raw;
+    uint8_t bc_imdg_raw; /* IMDG class or division */
+    bool has_bc_imdg_raw;
+    uint8_t bc_spare; /* Spare */
+    bool has_bc_spare;
+    uint8_t oil_raw; /* MARPOL Annex I oil */
+    bool has_oil_raw;
+    uint16_t oil_spare; /* Spare */
+    bool has_oil_spare;
+    uint8_t category_raw; /* MARPOL Annex II category */
+    bool has_category_raw;
+    uint16_t category_spare; /* Spare */
+    bool has_category_spare;
+    nmea_ais_bits reserved; /* Bits of a code without a layout */
+    bool has_reserved;
+} nmea_ais_dangerous_cargo_cargo;
+
+/* Dangerous cargo indication: AIS application DAC 1 FI 25 (in type 6). */
+typedef struct {
+    uint8_t unit_raw; /* Unit of the amount */
+    uint16_t amount_raw; /* Amount of cargo */
+    nmea_ais_dangerous_cargo_cargo cargos[28]; /* Cargos */
+    size_t cargos_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_dangerous_cargo;
 
 /* Dangerous cargo indication (SN/Circ.236): AIS application DAC 1 FI 12 (in type 6). */
 typedef struct {
@@ -574,12 +641,56 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_environmental;
 
+/* Fairway closed: AIS application DAC 1 FI 13 (in type 8). */
+typedef struct {
+    nmea_ais_bits reason; /* Reason for closing */
+    nmea_ais_bits closed_from; /* Location of closing from */
+    nmea_ais_bits closed_to; /* Location of closing to */
+    uint16_t radius; /* Extension of the closed area */
+    uint8_t extension_unit; /* Unit of the extension */
+    uint8_t from_day_raw; /* Closed from day (UTC) */
+    uint8_t from_month_raw; /* Closed from month (UTC) */
+    uint8_t from_hour_raw; /* Closed from hour (UTC) */
+    uint8_t from_minute_raw; /* Closed from minute (UTC) */
+    uint8_t to_day_raw; /* Closed until day (UTC) */
+    uint8_t to_month_raw; /* Closed until month (UTC) */
+    uint8_t to_hour_raw; /* Closed until hour (UTC) */
+    uint8_t to_minute_raw; /* Closed until minute (UTC) */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_fairway_closed;
+
 /* Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6). */
 typedef struct {
     uint16_t req_dac; /* Requested DAC */
     uint8_t req_fid; /* Requested FI */
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_function_interrogation;
+
+/* EMMA warning (inland): AIS application DAC 200 FI 23 (in type 8). */
+typedef struct {
+    uint8_t start_year_raw; /* Start year (UTC) */
+    uint8_t start_month_raw; /* Start month (UTC) */
+    uint8_t start_day_raw; /* Start day (UTC) */
+    uint8_t end_year_raw; /* End year (UTC) */
+    uint8_t end_month_raw; /* End month (UTC) */
+    uint8_t end_day_raw; /* End day (UTC) */
+    uint8_t start_hour_raw; /* Start hour (UTC) */
+    uint8_t start_minute_raw; /* Start minute (UTC) */
+    uint8_t end_hour_raw; /* End hour (UTC) */
+    uint8_t end_minute_raw; /* End minute (UTC) */
+    int32_t start_lon_raw; /* Start longitude [degrees] */
+    int32_t start_lat_raw; /* Start latitude [degrees] */
+    int32_t end_lon_raw; /* End longitude [degrees] */
+    int32_t end_lat_raw; /* End latitude [degrees] */
+    uint8_t weather_raw; /* Type of weather warning */
+    int16_t min_value; /* Minimum value */
+    int16_t max_value; /* Maximum value */
+    uint8_t intensity_raw; /* Classification of the warning */
+    uint8_t wind_direction_raw; /* Wind direction */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_emma_warning;
 
 /* Inland ETA at lock, bridge or terminal: AIS application DAC 200 FI 21 (in type 6). */
 typedef struct {
@@ -763,6 +874,195 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_persons_on_board;
 
+/* One entry of route_information_waypoint. */
+typedef struct {
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+} nmea_ais_route_information_waypoint;
+
+/* Route information: AIS application DAC 1 FI 27 (in type 8) or DAC 1 FI 28 (in type 6). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    uint8_t sender; /* Sender classification */
+    uint8_t route_type_raw; /* Route type */
+    uint8_t month_raw; /* Start month (UTC) */
+    uint8_t day_raw; /* Start day (UTC) */
+    uint8_t hour_raw; /* Start hour (UTC) */
+    uint8_t minute_raw; /* Start minute (UTC) */
+    uint32_t duration_raw; /* Duration [minutes] */
+    uint8_t waypoint_count; /* Number of waypoints */
+    nmea_ais_route_information_waypoint waypoints[16]; /* Waypoints */
+    size_t waypoints_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_route_information;
+
+/* Extended ship static and voyage related data: AIS application DAC 1 FI 24 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    uint16_t air_draught_raw; /* Air draught [metres] */
+    nmea_ais_bits last_port; /* Last port of call */
+    nmea_ais_bits next_port1; /* Next port of call */
+    nmea_ais_bits next_port2; /* Second next port of call */
+    nmea_ais_bits solas_status; /* SOLAS equipment status */
+    uint8_t ice_class_raw; /* Ice class */
+    uint32_t shaft_power_raw; /* Shaft horse power [horsepower] */
+    uint16_t vhf_raw; /* VHF working channel */
+    nmea_ais_bits lloyds_ship_type; /* Lloyd's ship type */
+    uint32_t gross_tonnage_raw; /* Gross tonnage [tonnes] */
+    uint8_t laden_ballast_raw; /* Laden or ballast */
+    uint8_t heavy_oil_raw; /* Heavy fuel oil on board */
+    uint8_t light_oil_raw; /* Light fuel oil on board */
+    uint8_t diesel_raw; /* Diesel oil on board */
+    uint16_t bunker_oil_raw; /* Total amount of bunker oil [tonnes] */
+    uint16_t persons_raw; /* Persons on board */
+    uint16_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_ship_static_voyage;
+
+/* Weather observation report from ship: AIS application DAC 1 FI 21 (in type 8). */
+typedef struct {
+    bool wmo; /* Type of weather report */
+    nmea_ais_bits location; /* Geographic location */
+    bool has_location;
+    int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
+    int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
+    uint8_t day_raw; /* Day (UTC) */
+    bool has_day_raw;
+    uint8_t hour_raw; /* Hour (UTC) */
+    bool has_hour_raw;
+    uint8_t minute_raw; /* Minute (UTC) */
+    bool has_minute_raw;
+    uint8_t weather; /* Present weather */
+    bool has_weather;
+    uint8_t visibility_raw; /* Horizontal visibility [nautical miles] */
+    bool has_visibility_raw;
+    uint8_t humidity; /* Relative humidity [percent] */
+    bool has_humidity;
+    uint8_t wspeed; /* Average wind speed [knots] */
+    bool has_wspeed;
+    uint16_t wdir; /* Wind direction [degrees] */
+    bool has_wdir;
+    uint16_t pressure; /* Air pressure */
+    bool has_pressure;
+    uint8_t pressure_tendency; /* Air pressure tendency */
+    bool has_pressure_tendency;
+    int16_t air_temp_raw; /* Air temperature [degrees Celsius] */
+    bool has_air_temp_raw;
+    uint16_t water_temp_raw; /* Water temperature [degrees Celsius] */
+    bool has_water_temp_raw;
+    uint8_t wave_period; /* Wave period [seconds] */
+    bool has_wave_period;
+    uint8_t wave_height_raw; /* Wave height [metres] */
+    bool has_wave_height_raw;
+    uint16_t wave_dir; /* Wave direction [degrees] */
+    bool has_wave_dir;
+    uint8_t swell_height_raw; /* Swell height [metres] */
+    bool has_swell_height_raw;
+    uint16_t swell_dir; /* Swell direction [degrees] */
+    bool has_swell_dir;
+    uint8_t swell_period; /* Swell period [seconds] */
+    bool has_swell_period;
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    uint16_t wmo_lon_raw; /* Longitude [degrees] */
+    bool has_wmo_lon_raw;
+    uint16_t wmo_lat; /* Latitude */
+    bool has_wmo_lat;
+    uint8_t wmo_month; /* Month (UTC) */
+    bool has_wmo_month;
+    uint8_t wmo_day; /* Day (UTC) */
+    bool has_wmo_day;
+    uint8_t wmo_hour; /* Hour (UTC) */
+    bool has_wmo_hour;
+    uint8_t wmo_minute; /* Minute (UTC) */
+    bool has_wmo_minute;
+    uint8_t cog; /* Course of the ship */
+    bool has_cog;
+    uint8_t sog_raw; /* Speed of the ship [knots] */
+    bool has_sog_raw;
+    uint8_t heading; /* Heading of the ship */
+    bool has_heading;
+    uint16_t wmo_pressure_raw; /* Air pressure [hPa] */
+    bool has_wmo_pressure_raw;
+    uint16_t rel_pressure_raw; /* Three-hour pressure change [hPa] */
+    bool has_rel_pressure_raw;
+    uint8_t wmo_pressure_tendency; /* Air pressure tendency */
+    bool has_wmo_pressure_tendency;
+    uint8_t wmo_wdir; /* True wind direction */
+    bool has_wmo_wdir;
+    uint8_t wmo_wspeed_raw; /* True wind speed [metres per second] */
+    bool has_wmo_wspeed_raw;
+    uint8_t rel_wdir; /* Relative wind direction */
+    bool has_rel_wdir;
+    uint8_t rel_wspeed_raw; /* Relative wind speed [metres per second] */
+    bool has_rel_wspeed_raw;
+    uint8_t gust_speed_raw; /* Maximum gust speed [metres per second] */
+    bool has_gust_speed_raw;
+    uint8_t gust_dir; /* Maximum gust direction */
+    bool has_gust_dir;
+    uint16_t wmo_air_temp; /* Air temperature */
+    bool has_wmo_air_temp;
+    uint8_t wmo_humidity; /* Relative humidity [percent] */
+    bool has_wmo_humidity;
+    uint16_t wmo_water_temp; /* Sea surface temperature */
+    bool has_wmo_water_temp;
+    uint8_t wmo_visibility; /* Horizontal visibility */
+    bool has_wmo_visibility;
+    uint16_t present_weather; /* Present weather */
+    bool has_present_weather;
+    uint8_t past_weather1; /* Past weather (1) */
+    bool has_past_weather1;
+    uint8_t past_weather2; /* Past weather (2) */
+    bool has_past_weather2;
+    uint8_t cloud_total; /* Total cloud cover */
+    bool has_cloud_total;
+    uint8_t cloud_low; /* Cloud amount (low) */
+    bool has_cloud_low;
+    uint8_t cloud_low_type; /* Cloud type (low) */
+    bool has_cloud_low_type;
+    uint8_t cloud_middle_type; /* Cloud type (middle) */
+    bool has_cloud_middle_type;
+    uint8_t cloud_high_type; /* Cloud type (high) */
+    bool has_cloud_high_type;
+    uint8_t cloud_base; /* Height of the lowest cloud base */
+    bool has_cloud_base;
+    uint8_t wmo_wave_period; /* Wind wave period [seconds] */
+    bool has_wmo_wave_period;
+    uint8_t wmo_wave_height_raw; /* Wind wave height [metres] */
+    bool has_wmo_wave_height_raw;
+    uint8_t wmo_swell_dir; /* First swell direction */
+    bool has_wmo_swell_dir;
+    uint8_t wmo_swell_period; /* First swell period [seconds] */
+    bool has_wmo_swell_period;
+    uint8_t wmo_swell_height_raw; /* First swell height [metres] */
+    bool has_wmo_swell_height_raw;
+    uint8_t swell2_dir; /* Second swell direction */
+    bool has_swell2_dir;
+    uint8_t swell2_period; /* Second swell period [seconds] */
+    bool has_swell2_period;
+    uint8_t swell2_height_raw; /* Second swell height [metres] */
+    bool has_swell2_height_raw;
+    uint8_t ice_thickness; /* Ice deposit thickness [centimetres] */
+    bool has_ice_thickness;
+    uint8_t ice_accretion; /* Rate of ice accretion */
+    bool has_ice_accretion;
+    uint8_t ice_cause; /* Cause of ice accretion */
+    bool has_ice_cause;
+    uint8_t ice_concentration; /* Sea ice concentration */
+    bool has_ice_concentration;
+    uint8_t ice_type; /* Amount and type of ice */
+    bool has_ice_type;
+    uint8_t ice_situation; /* Ice situation */
+    bool has_ice_situation;
+    uint8_t ice_development; /* Ice development */
+    bool has_ice_development;
+    uint8_t ice_bearing; /* Bearing of the ice edge */
+    bool has_ice_bearing;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_ship_weather;
+
 /* Text description (addressed): AIS application DAC 1 FI 30 (in type 6). */
 typedef struct {
     uint16_t linkage; /* Message linkage ID */
@@ -819,16 +1119,303 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_tidal_window_imo236;
 
+/* Marine traffic signal: AIS application DAC 1 FI 19 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    nmea_ais_bits station; /* Name of the signal station */
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+    uint8_t status_raw; /* Status of the signal */
+    uint8_t signal_raw; /* Signal in service */
+    uint8_t hour_raw; /* Hour of the next signal shift (UTC) */
+    uint8_t minute_raw; /* Minute of the next signal shift (UTC) */
+    uint8_t next_signal_raw; /* Expected next signal */
+    uint64_t spare; /* Spare */
+    bool has_spare;
+    uint64_t spare2; /* Spare */
+    bool has_spare2;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_traffic_signal;
+
+/* One entry of uscg_environmental_report. */
+typedef struct {
+    uint8_t report_type; /* Report type */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    uint8_t site; /* Site id */
+    uint8_t version; /* Version */
+    bool has_version;
+    int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
+    int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
+    uint8_t precision; /* Precision */
+    bool has_precision;
+    uint16_t altitude_raw; /* Altitude [metres] */
+    bool has_altitude_raw;
+    uint8_t owner; /* Sensor owner */
+    bool has_owner;
+    uint8_t timeout; /* Data timeout */
+    bool has_timeout;
+    uint8_t location_spare; /* Spare */
+    bool has_location_spare;
+    nmea_ais_bits name; /* Station name */
+    bool has_name;
+    uint8_t station_spare; /* Spare */
+    bool has_station_spare;
+    uint8_t wspeed_raw; /* Average wind speed [knots] */
+    bool has_wspeed_raw;
+    uint8_t wgust_raw; /* Wind gust [knots] */
+    bool has_wgust_raw;
+    uint16_t wdir_raw; /* Wind direction [degrees] */
+    bool has_wdir_raw;
+    uint16_t wgustdir_raw; /* Wind gust direction [degrees] */
+    bool has_wgustdir_raw;
+    uint8_t wind_sensor_raw; /* Wind sensor */
+    bool has_wind_sensor_raw;
+    uint8_t fwspeed_raw; /* Forecast wind speed [knots] */
+    bool has_fwspeed_raw;
+    uint8_t fwgust_raw; /* Forecast wind gust [knots] */
+    bool has_fwgust_raw;
+    uint16_t fwdir_raw; /* Forecast wind direction [degrees] */
+    bool has_fwdir_raw;
+    uint8_t wind_day_raw; /* Forecast day (UTC) */
+    bool has_wind_day_raw;
+    uint8_t wind_hour_raw; /* Forecast hour (UTC) */
+    bool has_wind_hour_raw;
+    uint8_t wind_minute_raw; /* Forecast minute (UTC) */
+    bool has_wind_minute_raw;
+    uint8_t wind_duration_raw; /* Forecast duration [minutes] */
+    bool has_wind_duration_raw;
+    uint8_t wind_spare; /* Spare */
+    bool has_wind_spare;
+    bool absolute; /* Water level type */
+    bool has_absolute;
+    int16_t level_raw; /* Water level [metres] */
+    bool has_level_raw;
+    uint8_t level_trend_raw; /* Water level trend */
+    bool has_level_trend_raw;
+    uint8_t datum_raw; /* Vertical reference datum */
+    bool has_datum_raw;
+    uint8_t level_sensor_raw; /* Water level sensor */
+    bool has_level_sensor_raw;
+    bool forecast_absolute; /* Forecast water level type */
+    bool has_forecast_absolute;
+    int16_t forecast_level_raw; /* Forecast water level [metres] */
+    bool has_forecast_level_raw;
+    uint8_t level_day_raw; /* Forecast day (UTC) */
+    bool has_level_day_raw;
+    uint8_t level_hour_raw; /* Forecast hour (UTC) */
+    bool has_level_hour_raw;
+    uint8_t level_minute_raw; /* Forecast minute (UTC) */
+    bool has_level_minute_raw;
+    uint8_t level_duration_raw; /* Forecast duration [minutes] */
+    bool has_level_duration_raw;
+    uint32_t level_spare; /* Spare */
+    bool has_level_spare;
+    uint8_t cspeed1_raw; /* Current speed at depth 1 [knots] */
+    bool has_cspeed1_raw;
+    uint16_t cdir1_raw; /* Current direction at depth 1 [degrees] */
+    bool has_cdir1_raw;
+    uint16_t cdepth1_raw; /* Depth 1 [metres] */
+    bool has_cdepth1_raw;
+    uint8_t cspeed2_raw; /* Current speed at depth 2 [knots] */
+    bool has_cspeed2_raw;
+    uint16_t cdir2_raw; /* Current direction at depth 2 [degrees] */
+    bool has_cdir2_raw;
+    uint16_t cdepth2_raw; /* Depth 2 [metres] */
+    bool has_cdepth2_raw;
+    uint8_t cspeed3_raw; /* Current speed at depth 3 [knots] */
+    bool has_cspeed3_raw;
+    uint16_t cdir3_raw; /* Current direction at depth 3 [degrees] */
+    bool has_cdir3_raw;
+    uint16_t cdepth3_raw; /* Depth 3 [metres] */
+    bool has_cdepth3_raw;
+    uint8_t current_sensor_raw; /* Current sensor */
+    bool has_current_sensor_raw;
+    uint8_t current_spare; /* Spare */
+    bool has_current_spare;
+    uint16_t cnorth1_raw; /* North component at depth 1 [knots] */
+    bool has_cnorth1_raw;
+    uint16_t ceast1_raw; /* East component at depth 1 [knots] */
+    bool has_ceast1_raw;
+    uint16_t cup1_raw; /* Up component at depth 1 [knots] */
+    bool has_cup1_raw;
+    uint16_t c3depth1; /* Depth 1 [metres] */
+    bool has_c3depth1;
+    uint16_t cnorth2_raw; /* North component at depth 2 [knots] */
+    bool has_cnorth2_raw;
+    uint16_t ceast2_raw; /* East component at depth 2 [knots] */
+    bool has_ceast2_raw;
+    uint16_t cup2_raw; /* Up component at depth 2 [knots] */
+    bool has_cup2_raw;
+    uint16_t c3depth2; /* Depth 2 [metres] */
+    bool has_c3depth2;
+    uint8_t current3d_sensor_raw; /* Current sensor */
+    bool has_current3d_sensor_raw;
+    uint16_t current3d_spare; /* Spare */
+    bool has_current3d_spare;
+    uint16_t hbearing; /* Bearing [degrees] */
+    bool has_hbearing;
+    uint16_t hdistance1; /* Distance of point 1 [metres] */
+    bool has_hdistance1;
+    uint8_t hspeed1_raw; /* Current speed at point 1 [knots] */
+    bool has_hspeed1_raw;
+    uint16_t hdir1; /* Current direction at point 1 [degrees] */
+    bool has_hdir1;
+    uint16_t hlevel1; /* Level of point 1 [metres] */
+    bool has_hlevel1;
+    uint16_t hdistance2; /* Distance of point 2 [metres] */
+    bool has_hdistance2;
+    uint8_t hspeed2_raw; /* Current speed at point 2 [knots] */
+    bool has_hspeed2_raw;
+    uint16_t hdir2; /* Current direction at point 2 [degrees] */
+    bool has_hdir2;
+    uint16_t hlevel2; /* Level of point 2 [metres] */
+    bool has_hlevel2;
+    uint8_t horizontal_sensor_raw; /* Current sensor */
+    bool has_horizontal_sensor_raw;
+    uint8_t horizontal_spare; /* Spare */
+    bool has_horizontal_spare;
+    uint8_t swell_height_raw; /* Swell height [metres] */
+    bool has_swell_height_raw;
+    uint8_t swell_period_raw; /* Swell period [seconds] */
+    bool has_swell_period_raw;
+    uint16_t swell_dir_raw; /* Swell direction [degrees] */
+    bool has_swell_dir_raw;
+    uint8_t sea_state_raw; /* Sea state */
+    bool has_sea_state_raw;
+    uint8_t swell_sensor_raw; /* Swell sensor */
+    bool has_swell_sensor_raw;
+    uint16_t water_temp_raw; /* Water temperature [degrees Celsius] */
+    bool has_water_temp_raw;
+    uint8_t water_temp_depth_raw; /* Water temperature depth [metres] */
+    bool has_water_temp_depth_raw;
+    uint8_t water_sensor_raw; /* Water temperature sensor */
+    bool has_water_sensor_raw;
+    uint8_t wave_height_raw; /* Wave height [metres] */
+    bool has_wave_height_raw;
+    uint8_t wave_period_raw; /* Wave period [seconds] */
+    bool has_wave_period_raw;
+    uint16_t wave_dir_raw; /* Wave direction [degrees] */
+    bool has_wave_dir_raw;
+    uint8_t wave_sensor_raw; /* Wave sensor */
+    bool has_wave_sensor_raw;
+    uint16_t sea_salinity_raw; /* Salinity [percent] */
+    bool has_sea_salinity_raw;
+    uint16_t salinity_water_temp_raw; /* Water temperature [degrees Celsius] */
+    bool has_salinity_water_temp_raw;
+    uint16_t conductivity_raw; /* Conductivity [siemens per metre] */
+    bool has_conductivity_raw;
+    uint16_t water_pressure_raw; /* Water pressure [decibar] */
+    bool has_water_pressure_raw;
+    uint16_t salinity_raw; /* Salinity [percent] */
+    bool has_salinity_raw;
+    uint8_t salinity_type; /* Salinity type */
+    bool has_salinity_type;
+    uint8_t salinity_sensor_raw; /* Salinity sensor */
+    bool has_salinity_sensor_raw;
+    uint64_t salinity_spare; /* Spare */
+    bool has_salinity_spare;
+    int16_t air_temp_raw; /* Air temperature [degrees Celsius] */
+    bool has_air_temp_raw;
+    uint8_t air_temp_sensor_raw; /* Air temperature sensor */
+    bool has_air_temp_sensor_raw;
+    uint8_t precipitation; /* Precipitation type */
+    bool has_precipitation;
+    uint8_t visibility_raw; /* Horizontal visibility [nautical miles] */
+    bool has_visibility_raw;
+    uint16_t dew_point_raw; /* Dew point [degrees Celsius] */
+    bool has_dew_point_raw;
+    uint8_t dew_point_sensor_raw; /* Dew point sensor */
+    bool has_dew_point_sensor_raw;
+    uint16_t air_pressure_raw; /* Air pressure [hPa] */
+    bool has_air_pressure_raw;
+    uint8_t pressure_tendency_raw; /* Air pressure tendency */
+    bool has_pressure_tendency_raw;
+    uint8_t pressure_sensor_raw; /* Air pressure sensor */
+    bool has_pressure_sensor_raw;
+    uint16_t weather_salinity_raw; /* Salinity [percent] */
+    bool has_weather_salinity_raw;
+    uint32_t weather_spare; /* Spare */
+    bool has_weather_spare;
+    uint16_t air_draught_raw; /* Air draught [metres] */
+    bool has_air_draught_raw;
+    uint16_t air_gap_raw; /* Air gap [metres] */
+    bool has_air_gap_raw;
+    uint8_t air_gap_trend_raw; /* Air gap trend */
+    bool has_air_gap_trend_raw;
+    uint16_t forecast_air_gap_raw; /* Forecast air gap [metres] */
+    bool has_forecast_air_gap_raw;
+    uint8_t air_gap_day_raw; /* Forecast day (UTC) */
+    bool has_air_gap_day_raw;
+    uint8_t air_gap_hour_raw; /* Forecast hour (UTC) */
+    bool has_air_gap_hour_raw;
+    uint8_t air_gap_minute_raw; /* Forecast minute (UTC) */
+    bool has_air_gap_minute_raw;
+    uint8_t air_gap_sensor_raw; /* Air gap sensor */
+    bool has_air_gap_sensor_raw;
+    uint32_t air_gap_spare; /* Spare */
+    bool has_air_gap_spare;
+    uint8_t wind2_speed_raw; /* Average wind speed [knots] */
+    bool has_wind2_speed_raw;
+    uint8_t wind2_gust_raw; /* Wind gust [knots] */
+    bool has_wind2_gust_raw;
+    uint16_t wind2_dir_raw; /* Wind direction [degrees] */
+    bool has_wind2_dir_raw;
+    uint8_t averaging_time; /* Averaging time [minutes] */
+    bool has_averaging_time;
+    uint8_t wind2_sensor_raw; /* Wind sensor */
+    bool has_wind2_sensor_raw;
+    uint8_t wind2_fspeed_raw; /* Forecast wind speed [knots] */
+    bool has_wind2_fspeed_raw;
+    uint8_t wind2_fgust_raw; /* Forecast wind gust [knots] */
+    bool has_wind2_fgust_raw;
+    uint16_t wind2_fdir_raw; /* Forecast wind direction [degrees] */
+    bool has_wind2_fdir_raw;
+    uint8_t wind2_hour_raw; /* Forecast hour (UTC) */
+    bool has_wind2_hour_raw;
+    uint8_t wind2_minute_raw; /* Forecast minute (UTC) */
+    bool has_wind2_minute_raw;
+    uint8_t wind2_duration_raw; /* Forecast duration [minutes] */
+    bool has_wind2_duration_raw;
+    uint16_t wind2_spare; /* Spare */
+    bool has_wind2_spare;
+    nmea_ais_bits reserved; /* Bits of a reserved report type */
+    bool has_reserved;
+} nmea_ais_uscg_environmental_report;
+
+/* Environmental (USCG): AIS application DAC 367 FI 33 (in type 8). */
+typedef struct {
+    nmea_ais_uscg_environmental_report reports[8]; /* Sensor reports */
+    size_t reports_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_uscg_environmental;
+
 /* One entry of vts_targets_target. */
 typedef struct {
     uint8_t idtype; /* Type of target identifier */
-    uint64_t id; /* Target identifier */
+    uint64_t mmsi; /* Target MMSI */
+    bool has_mmsi;
+    uint64_t imo; /* Target IMO number */
+    bool has_imo;
+    nmea_ais_bits callsign; /* Target call sign */
+    bool has_callsign;
+    nmea_ais_bits other; /* Other target identifier */
+    bool has_other;
     uint8_t spare; /* Spare */
+    bool has_spare;
     int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
     int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
     uint16_t course_raw; /* Course over ground [degrees] */
+    bool has_course_raw;
     uint8_t second_raw; /* Time stamp (UTC second) */
+    bool has_second_raw;
     uint8_t speed_raw; /* Speed over ground [knots] */
+    bool has_speed_raw;
 } nmea_ais_vts_targets_target;
 
 /* VTS targets: AIS application DAC 1 FI 16 (in type 8). */
@@ -841,13 +1428,26 @@ typedef struct {
 /* One entry of vts_targets_imo289_target. */
 typedef struct {
     uint8_t idtype; /* Type of target identifier */
-    uint64_t id; /* Target identifier */
+    uint64_t mmsi; /* Target MMSI */
+    bool has_mmsi;
+    uint64_t imo; /* Target IMO number */
+    bool has_imo;
+    nmea_ais_bits callsign; /* Target call sign */
+    bool has_callsign;
+    nmea_ais_bits other; /* Other target identifier */
+    bool has_other;
     uint8_t spare; /* Spare */
+    bool has_spare;
     int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
     int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
     uint16_t course_raw; /* Course over ground [degrees] */
+    bool has_course_raw;
     uint8_t second_raw; /* Time stamp (UTC second) */
+    bool has_second_raw;
     uint8_t speed_raw; /* Speed over ground [knots] */
+    bool has_speed_raw;
 } nmea_ais_vts_targets_imo289_target;
 
 /* VTS-generated or synthetic targets: AIS application DAC 1 FI 17 (in type 8). */
@@ -859,12 +1459,17 @@ typedef struct {
 
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
+    NMEA_AIS_APP_AIR_DRAUGHT,
     NMEA_AIS_APP_AREA_NOTICE,
     NMEA_AIS_APP_ATON_MONITORING,
+    NMEA_AIS_APP_BERTHING_DATA,
     NMEA_AIS_APP_CLEARANCE_TIME,
+    NMEA_AIS_APP_DANGEROUS_CARGO,
     NMEA_AIS_APP_DANGEROUS_CARGO_IMO236,
     NMEA_AIS_APP_ENVIRONMENTAL,
+    NMEA_AIS_APP_FAIRWAY_CLOSED,
     NMEA_AIS_APP_FUNCTION_INTERROGATION,
+    NMEA_AIS_APP_INLAND_EMMA_WARNING,
     NMEA_AIS_APP_INLAND_ETA,
     NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
     NMEA_AIS_APP_INLAND_RTA,
@@ -874,10 +1479,15 @@ typedef enum {
     NMEA_AIS_APP_METEO_HYDRO,
     NMEA_AIS_APP_METEO_HYDRO_IMO236,
     NMEA_AIS_APP_PERSONS_ON_BOARD,
+    NMEA_AIS_APP_ROUTE_INFORMATION,
+    NMEA_AIS_APP_SHIP_STATIC_VOYAGE,
+    NMEA_AIS_APP_SHIP_WEATHER,
     NMEA_AIS_APP_TEXT_ADDRESSED,
     NMEA_AIS_APP_TEXT_BROADCAST,
     NMEA_AIS_APP_TIDAL_WINDOW,
     NMEA_AIS_APP_TIDAL_WINDOW_IMO236,
+    NMEA_AIS_APP_TRAFFIC_SIGNAL,
+    NMEA_AIS_APP_USCG_ENVIRONMENTAL,
     NMEA_AIS_APP_VTS_TARGETS,
     NMEA_AIS_APP_VTS_TARGETS_IMO289,
 } nmea_ais_application_layout;
@@ -885,12 +1495,17 @@ typedef enum {
 typedef struct {
     nmea_ais_application_layout layout;
     union {
+        nmea_ais_air_draught air_draught;
         nmea_ais_area_notice area_notice;
         nmea_ais_aton_monitoring aton_monitoring;
+        nmea_ais_berthing_data berthing_data;
         nmea_ais_clearance_time clearance_time;
+        nmea_ais_dangerous_cargo dangerous_cargo;
         nmea_ais_dangerous_cargo_imo236 dangerous_cargo_imo236;
         nmea_ais_environmental environmental;
+        nmea_ais_fairway_closed fairway_closed;
         nmea_ais_function_interrogation function_interrogation;
+        nmea_ais_inland_emma_warning inland_emma_warning;
         nmea_ais_inland_eta inland_eta;
         nmea_ais_inland_persons_on_board inland_persons_on_board;
         nmea_ais_inland_rta inland_rta;
@@ -900,10 +1515,15 @@ typedef struct {
         nmea_ais_meteo_hydro meteo_hydro;
         nmea_ais_meteo_hydro_imo236 meteo_hydro_imo236;
         nmea_ais_persons_on_board persons_on_board;
+        nmea_ais_route_information route_information;
+        nmea_ais_ship_static_voyage ship_static_voyage;
+        nmea_ais_ship_weather ship_weather;
         nmea_ais_text_addressed text_addressed;
         nmea_ais_text_broadcast text_broadcast;
         nmea_ais_tidal_window tidal_window;
         nmea_ais_tidal_window_imo236 tidal_window_imo236;
+        nmea_ais_traffic_signal traffic_signal;
+        nmea_ais_uscg_environmental uscg_environmental;
         nmea_ais_vts_targets vts_targets;
         nmea_ais_vts_targets_imo289 vts_targets_imo289;
     } as;

@@ -321,9 +321,21 @@ static void ais_json_key(nmea_ais_json_out *j, const char *name)
     ais_json_puts(j, "\":");
 }
 
+/* An unsigned field's value: all 64 bits of one (a spare of 64 bits) are more than a long long holds. */
+static void ais_json_uint(nmea_ais_json_out *j, const char *name, unsigned long long value)
+{
+    char text[24];
+    ais_json_key(j, name);
+    ais_json_put(j, text, (size_t)snprintf(text, sizeof text, "%llu", value));
+}
+
 static void ais_json_int(nmea_ais_json_out *j, const char *name, long long value)
 {
     char text[24];
+    if (value >= 0) {
+        ais_json_uint(j, name, (unsigned long long)value);
+        return;
+    }
     ais_json_key(j, name);
     ais_json_put(j, text, (size_t)snprintf(text, sizeof text, "%lld", value));
 }

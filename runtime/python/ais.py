@@ -811,7 +811,7 @@ def compile_decoder(cls: type[Message] | type[Application]) -> Any:
                     f"{pad}width = max(length - {offset}, 0)",
                     f"{pad}raw = value & ((1 << width) - 1)",
                     f"{pad}application_cls = applications.get(({dac}, {fid}))",
-                    f"{pad}if application_cls is not None and {set_['message_type']} in application_cls.CARRIERS:",
+                    f"{pad}if application_cls is not None and {set_['message_type']} in application_cls.CARRIERS[{dac}, {fid}]:",
                     f"{pad}    try:",
                     f"{pad}        application = application_cls._decoder(raw, width, '', None)",
                     f"{pad}    except NmeaError:  # (_application: the data stay data)",
@@ -1324,11 +1324,12 @@ class Record:
 @dataclass(kw_only=True, slots=True)
 class Application(Record):
     """An application message (IMO SN.1/Circ.289, regional ones): the data bits of the binary
-    messages CARRIERS whose DAC and FI fields hold DAC and FID."""
+    messages whose DAC and FI fields hold a key of CARRIERS, of the types it names (DAC and FID: the
+    first key)."""
 
     DAC: ClassVar[int]
     FID: ClassVar[int]
-    CARRIERS: ClassVar[tuple[int, ...]]
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]]
     _decoder: ClassVar[Any]
     """decode(value, length, padding, applications): the class's compiled decoder (compile_decoder,
     `padding` and `applications` unused), compiled on first use."""
@@ -1507,7 +1508,7 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     first, second = data.dispatch  # the DAC's and the FI's members
     dac, fid = getattr(message, first), getattr(message, second)
     cls = applications.get((dac, fid))
-    if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
+    if cls is None or getattr(message, "message_type") not in cls.CARRIERS[dac, fid]:
         return None
     raw = int(bits, 2) if bits else 0
     try:

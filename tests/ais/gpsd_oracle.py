@@ -51,7 +51,6 @@ NOT_PUBLIC = "its layout is not public"
 KEPT_AS_DATA = {
     (0, 29): NOT_PUBLIC, (200, 3): NOT_PUBLIC, (232, 1): NOT_PUBLIC, (669, 11): NOT_PUBLIC, (211, 1): NOT_PUBLIC,
     (415, 1): NOT_PUBLIC, (366, 56): NOT_PUBLIC + " (encrypted)", (366, 57): NOT_PUBLIC + " (encrypted)",
-    (367, 33): "public, but the payload language does not describe its sub-records yet",
 }
 
 
@@ -139,7 +138,9 @@ def application_in_gpsd_form(application: ais.Application) -> dict[str, Any]:
            if getattr(application, f.id) is not None}
     for group in (item for item in application.LAYOUT if isinstance(item, ais.Group)):
         # gpsd writes a group as a list of objects (DAC 1 FI 14 and FI 32: `tidals`)
-        out[group.id] = [{f.id: raw_value(entry, f) for f in group.fields} for entry in getattr(application, group.id)]
+        # (an entry's choice: the fields of the case it took)
+        out[group.id] = [{f.id: raw_value(entry, f) for f in ais.flat_fields(group.fields) if getattr(entry, f.id) is not None}
+                         for entry in getattr(application, group.id)]
     # the data bits it is sent as: what gpsd gives for an application it does not decode
     out["data"] = data_json(application.bits("AIS application"))
     if {"day", "hour", "minute"} <= out.keys():  # DAC 1 FI 11 and FI 31

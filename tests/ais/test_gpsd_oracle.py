@@ -33,7 +33,7 @@ def test_the_applications_decode_every_message_of_their_dac_and_fi() -> None:
                for t, a in FOUND.items() for (dac, fid), c in a.applications.items() if c.ours}
     assert decoded == {(8, 1, 11): (10, 10, 0), (8, 1, 31): (8, 8, 0), (8, 200, 10): (51, 51, 0),
                        (6, 200, 55): (49, 49, 0), (6, 235, 10): (7, 7, 0), (6, 1, 2): (6, 6, 0),
-                       (6, 1, 30): (1, 1, 0), (6, 1, 40): (3, 3, 0), (8, 1, 16): (2, 2, 0)}
+                       (6, 1, 30): (1, 1, 0), (6, 1, 40): (3, 3, 0), (8, 1, 16): (2, 2, 0), (8, 367, 33): (1, 1, 0)}
 
 
 def test_each_dac_and_fi_ours_keeps_as_data_has_a_reason() -> None:

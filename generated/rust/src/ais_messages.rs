@@ -12,17 +12,23 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
-//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
-//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/air_draught.yaml, spec/ais/applications/area_notice.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/berthing_data.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo.yaml,
+//   spec/ais/applications/dangerous_cargo_imo236.yaml, spec/ais/applications/environmental.yaml,
+//   spec/ais/applications/fairway_closed.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_emma_warning.yaml, spec/ais/applications/inland_eta.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml, spec/ais/applications/inland_rta.yaml,
+//   spec/ais/applications/inland_signal_status.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
 //   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
-//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
-//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
-//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest 1b894963098349aa)
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/route_information.yaml,
+//   spec/ais/applications/ship_static_voyage.yaml, spec/ais/applications/ship_weather.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml,
+//   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
+//   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
+//   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
+//   (digest dced33e3c59a6f10)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -2081,14 +2087,14 @@ impl<'a> MultiSlotBinary<'a> {
             structured: r.take(1, "structured")? == 1,
             ..Self::default()
         };
-        match r.peek(38, 1, "addressed")? {
+        match u64::from(m.addressed) {
             1 => {
                 m.dest_mmsi = Some(r.take(30, "dest_mmsi")? as u32);
             }
             0 => {}
             _ => {}
         }
-        match r.peek(39, 1, "structured")? {
+        match u64::from(m.structured) {
             1 => {
                 m.dac = Some(r.take(10, "dac")? as u16);
                 m.fid = Some(r.take(6, "fid")? as u8);
@@ -2567,14 +2573,14 @@ impl<'a> SingleSlotBinary<'a> {
             structured: r.take(1, "structured")? == 1,
             ..Self::default()
         };
-        match r.peek(38, 1, "addressed")? {
+        match u64::from(m.addressed) {
             1 => {
                 m.dest_mmsi = Some(r.take(30, "dest_mmsi")? as u32);
             }
             0 => {}
             _ => {}
         }
-        match r.peek(39, 1, "structured")? {
+        match u64::from(m.structured) {
             1 => {
                 m.dac = Some(r.take(10, "dac")? as u16);
                 m.fid = Some(r.take(6, "fid")? as u8);
@@ -2732,7 +2738,7 @@ impl<'a> StaticDataReport<'a> {
             ..Self::default()
         };
         'read: {
-            match r.peek(38, 2, "partno")? {
+            match u64::from(m.partno) {
                 0 => {
                     m.shipname = Some(r.take_text(20, "shipname")?);
                     if r.remaining() < 8 {
@@ -2746,7 +2752,7 @@ impl<'a> StaticDataReport<'a> {
                     m.model = Some(r.take(4, "model")? as u8);
                     m.serial = Some(r.take(20, "serial")? as u32);
                     m.callsign = Some(r.take_text(7, "callsign")?);
-                    match r.peek(8, 30, "mmsi")? {
+                    match u64::from(m.mmsi) {
                         980000000..=989999999 => {
                             m.mothership_mmsi = Some(r.take(30, "mothership_mmsi")? as u32);
                         }
@@ -3159,6 +3165,48 @@ impl<'a> UtcInquiry<'a> {
         j.int("spare", self.spare)?;
         j.int("dest_mmsi", self.dest_mmsi)?;
         j.int("spare2", self.spare2)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Air draught (extended ship static data): AIS application DAC 1 FI 15 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AirDraught<'a> {
+    /// Air draught [metres].
+    pub air_draught_raw: u16,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> AirDraught<'a> {
+    /// Air draught [metres], or its special value.
+    pub fn air_draught(&self) -> ais::Reading<f64> {
+        let raw = self.air_draught_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            air_draught_raw: r.take(11, "air_draught")? as u16,
+            spare: r.take(5, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.air_draught_raw), 11, "air_draught")?;
+        w.put(u64::from(self.spare), 5, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("air_draught", self.air_draught(), "air_draught_raw", i64::from(self.air_draught_raw))?;
+        j.int("spare", self.spare)?;
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -3594,7 +3642,7 @@ impl<'a> AreaNoticeSubarea<'a> {
     }
 }
 
-/// Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8).
+/// Area notice: AIS application DAC 1 FI 22 (in type 8) or DAC 1 FI 23 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AreaNotice<'a> {
     /// Message linkage id.
@@ -3809,6 +3857,143 @@ impl<'a> AtonMonitoring<'a> {
     }
 }
 
+/// Berthing data: AIS application DAC 1 FI 20 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BerthingData<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Berth length [metres].
+    pub berth_length_raw: u16,
+    /// Water depth at the berth [metres].
+    pub berth_depth_raw: u8,
+    /// Mooring position.
+    pub position_raw: u8,
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Services availability.
+    pub services_known: bool,
+    /// Services.
+    pub services: ais::Bits<'a>,
+    /// Name of the berth.
+    pub berth_name: ais::SixBitText<'a>,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> BerthingData<'a> {
+    /// Berth length [metres], or its special value.
+    pub fn berth_length(&self) -> ais::Reading<i64> {
+        let raw = self.berth_length_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Water depth at the berth [metres], or its special value.
+    pub fn berth_depth(&self) -> ais::Reading<f64> {
+        let raw = self.berth_depth_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(0, "not_available")])
+    }
+    /// Mooring position, or its special value.
+    pub fn position(&self) -> ais::Reading<i64> {
+        let raw = self.position_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            berth_length_raw: r.take(9, "berth_length")? as u16,
+            berth_depth_raw: r.take(8, "berth_depth")? as u8,
+            position_raw: r.take(3, "position")? as u8,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            services_known: r.take(1, "services_known")? == 1,
+            services: r.take_bits(52, "services")?,
+            berth_name: r.take_text(20, "berth_name")?,
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put(u64::from(self.berth_length_raw), 9, "berth_length")?;
+        w.put(u64::from(self.berth_depth_raw), 8, "berth_depth")?;
+        w.put(u64::from(self.position_raw), 3, "position")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.services_known), 1, "services_known")?;
+        w.put_fixed(self.services, 52, false, "services")?;
+        w.put_fixed(self.berth_name.bits(), 120, true, "berth_name")?;
+        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.reading("berth_length", self.berth_length(), "berth_length_raw", i64::from(self.berth_length_raw))?;
+        j.reading("berth_depth", self.berth_depth(), "berth_depth_raw", i64::from(self.berth_depth_raw))?;
+        j.reading("position", self.position(), "position_raw", i64::from(self.position_raw))?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.flag("services_known", self.services_known)?;
+        j.text("services", self.services)?;
+        j.text("berth_name", self.berth_name)?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Clearance time to enter port: AIS application DAC 1 FI 18 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ClearanceTime<'a> {
@@ -3916,6 +4101,267 @@ impl<'a> ClearanceTime<'a> {
         j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
         j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
         j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of DangerousCargoCargo.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DangerousCargoCargo<'a> {
+    /// Code under which the cargo is carried.
+    pub code_raw: u8,
+    /// IMDG class or division.
+    pub imdg_raw: Option<u8>,
+    /// Spare.
+    pub imdg_spare: Option<u8>,
+    /// UN number.
+    pub un_raw: Option<u16>,
+    /// BC Code group.
+    pub bc_raw: Option<u8>,
+    /// IMDG class or division.
+    pub bc_imdg_raw: Option<u8>,
+    /// Spare.
+    pub bc_spare: Option<u8>,
+    /// MARPOL Annex I oil.
+    pub oil_raw: Option<u8>,
+    /// Spare.
+    pub oil_spare: Option<u16>,
+    /// MARPOL Annex II category.
+    pub category_raw: Option<u8>,
+    /// Spare.
+    pub category_spare: Option<u16>,
+    /// Bits of a code without a layout.
+    pub reserved: Option<ais::Bits<'a>>,
+}
+
+impl<'a> DangerousCargoCargo<'a> {
+    /// Code under which the cargo is carried, or its special value.
+    pub fn code(&self) -> ais::Reading<i64> {
+        let raw = self.code_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// IMDG class or division, or its special value.
+    pub fn imdg(&self) -> Option<ais::Reading<i64>> {
+        self.imdg_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// UN number, or its special value.
+    pub fn un(&self) -> Option<ais::Reading<i64>> {
+        self.un_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// BC Code group, or its special value.
+    pub fn bc(&self) -> Option<ais::Reading<i64>> {
+        self.bc_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// IMDG class or division, or its special value.
+    pub fn bc_imdg(&self) -> Option<ais::Reading<i64>> {
+        self.bc_imdg_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// MARPOL Annex I oil, or its special value.
+    pub fn oil(&self) -> Option<ais::Reading<i64>> {
+        self.oil_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// MARPOL Annex II category, or its special value.
+    pub fn category(&self) -> Option<ais::Reading<i64>> {
+        self.category_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { code_raw: r.take(4, "code")? as u8, ..Self::default() };
+        match u64::from(m.code_raw) {
+            1 => {
+                m.imdg_raw = Some(r.take(7, "imdg")? as u8);
+                m.imdg_spare = Some(r.take(6, "imdg_spare")? as u8);
+            }
+            2 => {
+                m.un_raw = Some(r.take(13, "un")? as u16);
+            }
+            3 => {
+                m.bc_raw = Some(r.take(3, "bc")? as u8);
+                m.bc_imdg_raw = Some(r.take(7, "bc_imdg")? as u8);
+                m.bc_spare = Some(r.take(3, "bc_spare")? as u8);
+            }
+            4 => {
+                m.oil_raw = Some(r.take(4, "oil")? as u8);
+                m.oil_spare = Some(r.take(9, "oil_spare")? as u16);
+            }
+            5 => {
+                m.category_raw = Some(r.take(3, "category")? as u8);
+                m.category_spare = Some(r.take(10, "category_spare")? as u16);
+            }
+            _ => {
+                m.reserved = Some(r.take_bits(13, "reserved")?);
+            }
+        }
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.code_raw), 4, "code")?;
+            match u64::from(self.code_raw) {
+                1 => {
+                    let Some(v) = self.imdg_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "imdg")?;
+                    let Some(v) = self.imdg_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "imdg_spare")?;
+                }
+                2 => {
+                    let Some(v) = self.un_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "un")?;
+                }
+                3 => {
+                    let Some(v) = self.bc_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "bc")?;
+                    let Some(v) = self.bc_imdg_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "bc_imdg")?;
+                    let Some(v) = self.bc_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "bc_spare")?;
+                }
+                4 => {
+                    let Some(v) = self.oil_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "oil")?;
+                    let Some(v) = self.oil_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "oil_spare")?;
+                }
+                5 => {
+                    let Some(v) = self.category_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "category")?;
+                    let Some(v) = self.category_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "category_spare")?;
+                }
+                _ => {
+                    let Some(v) = self.reserved else {
+                        break 'write;
+                    };
+                    w.put_fixed(v, 13, false, "reserved")?;
+                }
+            }
+        }
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("code", self.code(), "code_raw", i64::from(self.code_raw))?;
+        if let (Some(v), Some(reading)) = (self.imdg_raw, self.imdg()) {
+            j.reading("imdg", reading, "imdg_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.imdg_spare {
+            j.int("imdg_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.un_raw, self.un()) {
+            j.reading("un", reading, "un_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.bc_raw, self.bc()) {
+            j.reading("bc", reading, "bc_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.bc_imdg_raw, self.bc_imdg()) {
+            j.reading("bc_imdg", reading, "bc_imdg_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.bc_spare {
+            j.int("bc_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.oil_raw, self.oil()) {
+            j.reading("oil", reading, "oil_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.oil_spare {
+            j.int("oil_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.category_raw, self.category()) {
+            j.reading("category", reading, "category_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.category_spare {
+            j.int("category_spare", v)?;
+        }
+        if let Some(v) = self.reserved {
+            j.text("reserved", v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Dangerous cargo indication: AIS application DAC 1 FI 25 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DangerousCargo<'a> {
+    /// Unit of the amount.
+    pub unit_raw: u8,
+    /// Amount of cargo.
+    pub amount_raw: u16,
+    /// Cargos: 0 to 28 entries.
+    pub cargos: [Option<DangerousCargoCargo<'a>>; 28],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> DangerousCargo<'a> {
+    /// Unit of the amount, or its special value.
+    pub fn unit(&self) -> ais::Reading<i64> {
+        let raw = self.unit_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Amount of cargo, or its special value.
+    pub fn amount(&self) -> ais::Reading<i64> {
+        let raw = self.amount_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m =
+            Self { unit_raw: r.take(2, "unit")? as u8, amount_raw: r.take(10, "amount")? as u16, ..Self::default() };
+        let count = r.entries(0, 28, 17, 0, "cargos")?;
+        for slot in m.cargos.iter_mut().take(count) {
+            *slot = Some(DangerousCargoCargo::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.unit_raw), 2, "unit")?;
+        w.put(u64::from(self.amount_raw), 10, "amount")?;
+        for entry in self.cargos.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("unit", self.unit(), "unit_raw", i64::from(self.unit_raw))?;
+        j.reading("amount", self.amount(), "amount_raw", i64::from(self.amount_raw))?;
+        {
+            let out = j.key("cargos")?;
+            out.write_char('[')?;
+            for (i, entry) in self.cargos.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -5657,6 +6103,143 @@ impl<'a> Environmental<'a> {
     }
 }
 
+/// Fairway closed: AIS application DAC 1 FI 13 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FairwayClosed<'a> {
+    /// Reason for closing.
+    pub reason: ais::SixBitText<'a>,
+    /// Location of closing from.
+    pub closed_from: ais::SixBitText<'a>,
+    /// Location of closing to.
+    pub closed_to: ais::SixBitText<'a>,
+    /// Extension of the closed area.
+    pub radius: u16,
+    /// Unit of the extension.
+    pub extension_unit: u8,
+    /// Closed from day (UTC).
+    pub from_day_raw: u8,
+    /// Closed from month (UTC).
+    pub from_month_raw: u8,
+    /// Closed from hour (UTC).
+    pub from_hour_raw: u8,
+    /// Closed from minute (UTC).
+    pub from_minute_raw: u8,
+    /// Closed until day (UTC).
+    pub to_day_raw: u8,
+    /// Closed until month (UTC).
+    pub to_month_raw: u8,
+    /// Closed until hour (UTC).
+    pub to_hour_raw: u8,
+    /// Closed until minute (UTC).
+    pub to_minute_raw: u8,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> FairwayClosed<'a> {
+    /// Closed from day (UTC), or its special value.
+    pub fn from_day(&self) -> ais::Reading<i64> {
+        let raw = self.from_day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Closed from month (UTC), or its special value.
+    pub fn from_month(&self) -> ais::Reading<i64> {
+        let raw = self.from_month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Closed from hour (UTC), or its special value.
+    pub fn from_hour(&self) -> ais::Reading<i64> {
+        let raw = self.from_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Closed from minute (UTC), or its special value.
+    pub fn from_minute(&self) -> ais::Reading<i64> {
+        let raw = self.from_minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Closed until day (UTC), or its special value.
+    pub fn to_day(&self) -> ais::Reading<i64> {
+        let raw = self.to_day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Closed until month (UTC), or its special value.
+    pub fn to_month(&self) -> ais::Reading<i64> {
+        let raw = self.to_month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Closed until hour (UTC), or its special value.
+    pub fn to_hour(&self) -> ais::Reading<i64> {
+        let raw = self.to_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Closed until minute (UTC), or its special value.
+    pub fn to_minute(&self) -> ais::Reading<i64> {
+        let raw = self.to_minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            reason: r.take_text(20, "reason")?,
+            closed_from: r.take_text(20, "closed_from")?,
+            closed_to: r.take_text(20, "closed_to")?,
+            radius: r.take(10, "radius")? as u16,
+            extension_unit: r.take(2, "extension_unit")? as u8,
+            from_day_raw: r.take(5, "from_day")? as u8,
+            from_month_raw: r.take(4, "from_month")? as u8,
+            from_hour_raw: r.take(5, "from_hour")? as u8,
+            from_minute_raw: r.take(6, "from_minute")? as u8,
+            to_day_raw: r.take(5, "to_day")? as u8,
+            to_month_raw: r.take(4, "to_month")? as u8,
+            to_hour_raw: r.take(5, "to_hour")? as u8,
+            to_minute_raw: r.take(6, "to_minute")? as u8,
+            spare: r.take(4, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_fixed(self.reason.bits(), 120, true, "reason")?;
+        w.put_fixed(self.closed_from.bits(), 120, true, "closed_from")?;
+        w.put_fixed(self.closed_to.bits(), 120, true, "closed_to")?;
+        w.put(u64::from(self.radius), 10, "radius")?;
+        w.put(u64::from(self.extension_unit), 2, "extension_unit")?;
+        w.put(u64::from(self.from_day_raw), 5, "from_day")?;
+        w.put(u64::from(self.from_month_raw), 4, "from_month")?;
+        w.put(u64::from(self.from_hour_raw), 5, "from_hour")?;
+        w.put(u64::from(self.from_minute_raw), 6, "from_minute")?;
+        w.put(u64::from(self.to_day_raw), 5, "to_day")?;
+        w.put(u64::from(self.to_month_raw), 4, "to_month")?;
+        w.put(u64::from(self.to_hour_raw), 5, "to_hour")?;
+        w.put(u64::from(self.to_minute_raw), 6, "to_minute")?;
+        w.put(u64::from(self.spare), 4, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("reason", self.reason)?;
+        j.text("closed_from", self.closed_from)?;
+        j.text("closed_to", self.closed_to)?;
+        j.int("radius", self.radius)?;
+        j.int("extension_unit", self.extension_unit)?;
+        j.reading("from_day", self.from_day(), "from_day_raw", i64::from(self.from_day_raw))?;
+        j.reading("from_month", self.from_month(), "from_month_raw", i64::from(self.from_month_raw))?;
+        j.reading("from_hour", self.from_hour(), "from_hour_raw", i64::from(self.from_hour_raw))?;
+        j.reading("from_minute", self.from_minute(), "from_minute_raw", i64::from(self.from_minute_raw))?;
+        j.reading("to_day", self.to_day(), "to_day_raw", i64::from(self.to_day_raw))?;
+        j.reading("to_month", self.to_month(), "to_month_raw", i64::from(self.to_month_raw))?;
+        j.reading("to_hour", self.to_hour(), "to_hour_raw", i64::from(self.to_hour_raw))?;
+        j.reading("to_minute", self.to_minute(), "to_minute_raw", i64::from(self.to_minute_raw))?;
+        j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FunctionInterrogation<'a> {
@@ -5686,6 +6269,218 @@ impl<'a> FunctionInterrogation<'a> {
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         j.int("req_dac", self.req_dac)?;
         j.int("req_fid", self.req_fid)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// EMMA warning (inland): AIS application DAC 200 FI 23 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandEmmaWarning<'a> {
+    /// Start year (UTC).
+    pub start_year_raw: u8,
+    /// Start month (UTC).
+    pub start_month_raw: u8,
+    /// Start day (UTC).
+    pub start_day_raw: u8,
+    /// End year (UTC).
+    pub end_year_raw: u8,
+    /// End month (UTC).
+    pub end_month_raw: u8,
+    /// End day (UTC).
+    pub end_day_raw: u8,
+    /// Start hour (UTC).
+    pub start_hour_raw: u8,
+    /// Start minute (UTC).
+    pub start_minute_raw: u8,
+    /// End hour (UTC).
+    pub end_hour_raw: u8,
+    /// End minute (UTC).
+    pub end_minute_raw: u8,
+    /// Start longitude [degrees].
+    pub start_lon_raw: i32,
+    /// Start latitude [degrees].
+    pub start_lat_raw: i32,
+    /// End longitude [degrees].
+    pub end_lon_raw: i32,
+    /// End latitude [degrees].
+    pub end_lat_raw: i32,
+    /// Type of weather warning.
+    pub weather_raw: u8,
+    /// Minimum value.
+    pub min_value: i16,
+    /// Maximum value.
+    pub max_value: i16,
+    /// Classification of the warning.
+    pub intensity_raw: u8,
+    /// Wind direction.
+    pub wind_direction_raw: u8,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandEmmaWarning<'a> {
+    /// Start year (UTC), or its special value.
+    pub fn start_year(&self) -> ais::Reading<i64> {
+        let raw = self.start_year_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start month (UTC), or its special value.
+    pub fn start_month(&self) -> ais::Reading<i64> {
+        let raw = self.start_month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start day (UTC), or its special value.
+    pub fn start_day(&self) -> ais::Reading<i64> {
+        let raw = self.start_day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// End year (UTC), or its special value.
+    pub fn end_year(&self) -> ais::Reading<i64> {
+        let raw = self.end_year_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// End month (UTC), or its special value.
+    pub fn end_month(&self) -> ais::Reading<i64> {
+        let raw = self.end_month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// End day (UTC), or its special value.
+    pub fn end_day(&self) -> ais::Reading<i64> {
+        let raw = self.end_day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start hour (UTC), or its special value.
+    pub fn start_hour(&self) -> ais::Reading<i64> {
+        let raw = self.start_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Start minute (UTC), or its special value.
+    pub fn start_minute(&self) -> ais::Reading<i64> {
+        let raw = self.start_minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// End hour (UTC), or its special value.
+    pub fn end_hour(&self) -> ais::Reading<i64> {
+        let raw = self.end_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// End minute (UTC), or its special value.
+    pub fn end_minute(&self) -> ais::Reading<i64> {
+        let raw = self.end_minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Start longitude [degrees], or its special value.
+    pub fn start_lon(&self) -> ais::Reading<f64> {
+        let raw = self.start_lon_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")])
+    }
+    /// Start latitude [degrees], or its special value.
+    pub fn start_lat(&self) -> ais::Reading<f64> {
+        let raw = self.start_lat_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")])
+    }
+    /// End longitude [degrees], or its special value.
+    pub fn end_lon(&self) -> ais::Reading<f64> {
+        let raw = self.end_lon_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")])
+    }
+    /// End latitude [degrees], or its special value.
+    pub fn end_lat(&self) -> ais::Reading<f64> {
+        let raw = self.end_lat_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")])
+    }
+    /// Type of weather warning, or its special value.
+    pub fn weather(&self) -> ais::Reading<i64> {
+        let raw = self.weather_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Classification of the warning, or its special value.
+    pub fn intensity(&self) -> ais::Reading<i64> {
+        let raw = self.intensity_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Wind direction, or its special value.
+    pub fn wind_direction(&self) -> ais::Reading<i64> {
+        let raw = self.wind_direction_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            start_year_raw: r.take(8, "start_year")? as u8,
+            start_month_raw: r.take(4, "start_month")? as u8,
+            start_day_raw: r.take(5, "start_day")? as u8,
+            end_year_raw: r.take(8, "end_year")? as u8,
+            end_month_raw: r.take(4, "end_month")? as u8,
+            end_day_raw: r.take(5, "end_day")? as u8,
+            start_hour_raw: r.take(5, "start_hour")? as u8,
+            start_minute_raw: r.take(6, "start_minute")? as u8,
+            end_hour_raw: r.take(5, "end_hour")? as u8,
+            end_minute_raw: r.take(6, "end_minute")? as u8,
+            start_lon_raw: r.take_signed(28, "start_lon")? as i32,
+            start_lat_raw: r.take_signed(27, "start_lat")? as i32,
+            end_lon_raw: r.take_signed(28, "end_lon")? as i32,
+            end_lat_raw: r.take_signed(27, "end_lat")? as i32,
+            weather_raw: r.take(4, "weather")? as u8,
+            min_value: r.take_signed(9, "min_value")? as i16,
+            max_value: r.take_signed(9, "max_value")? as i16,
+            intensity_raw: r.take(2, "intensity")? as u8,
+            wind_direction_raw: r.take(4, "wind_direction")? as u8,
+            spare: r.take(6, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.start_year_raw), 8, "start_year")?;
+        w.put(u64::from(self.start_month_raw), 4, "start_month")?;
+        w.put(u64::from(self.start_day_raw), 5, "start_day")?;
+        w.put(u64::from(self.end_year_raw), 8, "end_year")?;
+        w.put(u64::from(self.end_month_raw), 4, "end_month")?;
+        w.put(u64::from(self.end_day_raw), 5, "end_day")?;
+        w.put(u64::from(self.start_hour_raw), 5, "start_hour")?;
+        w.put(u64::from(self.start_minute_raw), 6, "start_minute")?;
+        w.put(u64::from(self.end_hour_raw), 5, "end_hour")?;
+        w.put(u64::from(self.end_minute_raw), 6, "end_minute")?;
+        w.put_signed(i64::from(self.start_lon_raw), 28, "start_lon")?;
+        w.put_signed(i64::from(self.start_lat_raw), 27, "start_lat")?;
+        w.put_signed(i64::from(self.end_lon_raw), 28, "end_lon")?;
+        w.put_signed(i64::from(self.end_lat_raw), 27, "end_lat")?;
+        w.put(u64::from(self.weather_raw), 4, "weather")?;
+        w.put_signed(i64::from(self.min_value), 9, "min_value")?;
+        w.put_signed(i64::from(self.max_value), 9, "max_value")?;
+        w.put(u64::from(self.intensity_raw), 2, "intensity")?;
+        w.put(u64::from(self.wind_direction_raw), 4, "wind_direction")?;
+        w.put(u64::from(self.spare), 6, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("start_year", self.start_year(), "start_year_raw", i64::from(self.start_year_raw))?;
+        j.reading("start_month", self.start_month(), "start_month_raw", i64::from(self.start_month_raw))?;
+        j.reading("start_day", self.start_day(), "start_day_raw", i64::from(self.start_day_raw))?;
+        j.reading("end_year", self.end_year(), "end_year_raw", i64::from(self.end_year_raw))?;
+        j.reading("end_month", self.end_month(), "end_month_raw", i64::from(self.end_month_raw))?;
+        j.reading("end_day", self.end_day(), "end_day_raw", i64::from(self.end_day_raw))?;
+        j.reading("start_hour", self.start_hour(), "start_hour_raw", i64::from(self.start_hour_raw))?;
+        j.reading("start_minute", self.start_minute(), "start_minute_raw", i64::from(self.start_minute_raw))?;
+        j.reading("end_hour", self.end_hour(), "end_hour_raw", i64::from(self.end_hour_raw))?;
+        j.reading("end_minute", self.end_minute(), "end_minute_raw", i64::from(self.end_minute_raw))?;
+        j.reading("start_lon", self.start_lon(), "start_lon_raw", i64::from(self.start_lon_raw))?;
+        j.reading("start_lat", self.start_lat(), "start_lat_raw", i64::from(self.start_lat_raw))?;
+        j.reading("end_lon", self.end_lon(), "end_lon_raw", i64::from(self.end_lon_raw))?;
+        j.reading("end_lat", self.end_lat(), "end_lat_raw", i64::from(self.end_lat_raw))?;
+        j.reading("weather", self.weather(), "weather_raw", i64::from(self.weather_raw))?;
+        j.int("min_value", self.min_value)?;
+        j.int("max_value", self.max_value)?;
+        j.reading("intensity", self.intensity(), "intensity_raw", i64::from(self.intensity_raw))?;
+        j.reading("wind_direction", self.wind_direction(), "wind_direction_raw", i64::from(self.wind_direction_raw))?;
+        j.int("spare", self.spare)?;
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -7155,6 +7950,1156 @@ impl<'a> PersonsOnBoard<'a> {
     }
 }
 
+/// One entry of RouteInformationWaypoint.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RouteInformationWaypoint {
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+}
+
+impl RouteInformationWaypoint {
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")])
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self { lon_raw: r.take_signed(28, "lon")? as i32, lat_raw: r.take_signed(27, "lat")? as i32 };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_signed(i64::from(self.lon_raw), 28, "lon")?;
+        w.put_signed(i64::from(self.lat_raw), 27, "lat")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        Ok(())
+    }
+}
+
+/// Route information: AIS application DAC 1 FI 27 (in type 8) or DAC 1 FI 28 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RouteInformation<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Sender classification.
+    pub sender: u8,
+    /// Route type.
+    pub route_type_raw: u8,
+    /// Start month (UTC).
+    pub month_raw: u8,
+    /// Start day (UTC).
+    pub day_raw: u8,
+    /// Start hour (UTC).
+    pub hour_raw: u8,
+    /// Start minute (UTC).
+    pub minute_raw: u8,
+    /// Duration [minutes].
+    pub duration_raw: u32,
+    /// Number of waypoints.
+    pub waypoint_count: u8,
+    /// Waypoints: 0 to 16 entries.
+    pub waypoints: [Option<RouteInformationWaypoint>; 16],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> RouteInformation<'a> {
+    /// Route type, or its special value.
+    pub fn route_type(&self) -> ais::Reading<i64> {
+        let raw = self.route_type_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Start minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Duration [minutes], or its special value.
+    pub fn duration(&self) -> ais::Reading<i64> {
+        let raw = self.duration_raw;
+        ais::counted(i64::from(raw), 0, &[(262143, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            sender: r.take(3, "sender")? as u8,
+            route_type_raw: r.take(5, "route_type")? as u8,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            duration_raw: r.take(18, "duration")? as u32,
+            waypoint_count: r.take(5, "waypoint_count")? as u8,
+            ..Self::default()
+        };
+        let count = r.entries(0, 16, 55, 0, "waypoints")?;
+        for slot in m.waypoints.iter_mut().take(count) {
+            *slot = Some(RouteInformationWaypoint::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put(u64::from(self.sender), 3, "sender")?;
+        w.put(u64::from(self.route_type_raw), 5, "route_type")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.duration_raw), 18, "duration")?;
+        w.put(u64::from(self.waypoint_count), 5, "waypoint_count")?;
+        for entry in self.waypoints.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.int("sender", self.sender)?;
+        j.reading("route_type", self.route_type(), "route_type_raw", i64::from(self.route_type_raw))?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("duration", self.duration(), "duration_raw", i64::from(self.duration_raw))?;
+        j.int("waypoint_count", self.waypoint_count)?;
+        {
+            let out = j.key("waypoints")?;
+            out.write_char('[')?;
+            for (i, entry) in self.waypoints.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Extended ship static and voyage related data: AIS application DAC 1 FI 24 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ShipStaticVoyage<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Air draught [metres].
+    pub air_draught_raw: u16,
+    /// Last port of call.
+    pub last_port: ais::SixBitText<'a>,
+    /// Next port of call.
+    pub next_port1: ais::SixBitText<'a>,
+    /// Second next port of call.
+    pub next_port2: ais::SixBitText<'a>,
+    /// SOLAS equipment status.
+    pub solas_status: ais::Bits<'a>,
+    /// Ice class.
+    pub ice_class_raw: u8,
+    /// Shaft horse power [horsepower].
+    pub shaft_power_raw: u32,
+    /// VHF working channel.
+    pub vhf_raw: u16,
+    /// Lloyd's ship type.
+    pub lloyds_ship_type: ais::SixBitText<'a>,
+    /// Gross tonnage [tonnes].
+    pub gross_tonnage_raw: u32,
+    /// Laden or ballast.
+    pub laden_ballast_raw: u8,
+    /// Heavy fuel oil on board.
+    pub heavy_oil_raw: u8,
+    /// Light fuel oil on board.
+    pub light_oil_raw: u8,
+    /// Diesel oil on board.
+    pub diesel_raw: u8,
+    /// Total amount of bunker oil [tonnes].
+    pub bunker_oil_raw: u16,
+    /// Persons on board.
+    pub persons_raw: u16,
+    /// Spare.
+    pub spare: u16,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> ShipStaticVoyage<'a> {
+    /// Air draught [metres], or its special value.
+    pub fn air_draught(&self) -> ais::Reading<f64> {
+        let raw = self.air_draught_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(0, "not_available")])
+    }
+    /// Ice class, or its special value.
+    pub fn ice_class(&self) -> ais::Reading<i64> {
+        let raw = self.ice_class_raw;
+        ais::counted(i64::from(raw), 0, &[(15, "not_available")])
+    }
+    /// Shaft horse power [horsepower], or its special value.
+    pub fn shaft_power(&self) -> ais::Reading<i64> {
+        let raw = self.shaft_power_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// VHF working channel, or its special value.
+    pub fn vhf(&self) -> ais::Reading<i64> {
+        let raw = self.vhf_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Gross tonnage [tonnes], or its special value.
+    pub fn gross_tonnage(&self) -> ais::Reading<i64> {
+        let raw = self.gross_tonnage_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Laden or ballast, or its special value.
+    pub fn laden_ballast(&self) -> ais::Reading<i64> {
+        let raw = self.laden_ballast_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Heavy fuel oil on board, or its special value.
+    pub fn heavy_oil(&self) -> ais::Reading<i64> {
+        let raw = self.heavy_oil_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Light fuel oil on board, or its special value.
+    pub fn light_oil(&self) -> ais::Reading<i64> {
+        let raw = self.light_oil_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Diesel oil on board, or its special value.
+    pub fn diesel(&self) -> ais::Reading<i64> {
+        let raw = self.diesel_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Total amount of bunker oil [tonnes], or its special value.
+    pub fn bunker_oil(&self) -> ais::Reading<i64> {
+        let raw = self.bunker_oil_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Persons on board, or its special value.
+    pub fn persons(&self) -> ais::Reading<i64> {
+        let raw = self.persons_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            air_draught_raw: r.take(13, "air_draught")? as u16,
+            last_port: r.take_text(5, "last_port")?,
+            next_port1: r.take_text(5, "next_port1")?,
+            next_port2: r.take_text(5, "next_port2")?,
+            solas_status: r.take_bits(52, "solas_status")?,
+            ice_class_raw: r.take(4, "ice_class")? as u8,
+            shaft_power_raw: r.take(18, "shaft_power")? as u32,
+            vhf_raw: r.take(12, "vhf")? as u16,
+            lloyds_ship_type: r.take_text(7, "lloyds_ship_type")?,
+            gross_tonnage_raw: r.take(18, "gross_tonnage")? as u32,
+            laden_ballast_raw: r.take(2, "laden_ballast")? as u8,
+            heavy_oil_raw: r.take(2, "heavy_oil")? as u8,
+            light_oil_raw: r.take(2, "light_oil")? as u8,
+            diesel_raw: r.take(2, "diesel")? as u8,
+            bunker_oil_raw: r.take(14, "bunker_oil")? as u16,
+            persons_raw: r.take(13, "persons")? as u16,
+            spare: r.take(10, "spare")? as u16,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put(u64::from(self.air_draught_raw), 13, "air_draught")?;
+        w.put_fixed(self.last_port.bits(), 30, true, "last_port")?;
+        w.put_fixed(self.next_port1.bits(), 30, true, "next_port1")?;
+        w.put_fixed(self.next_port2.bits(), 30, true, "next_port2")?;
+        w.put_fixed(self.solas_status, 52, false, "solas_status")?;
+        w.put(u64::from(self.ice_class_raw), 4, "ice_class")?;
+        w.put(u64::from(self.shaft_power_raw), 18, "shaft_power")?;
+        w.put(u64::from(self.vhf_raw), 12, "vhf")?;
+        w.put_fixed(self.lloyds_ship_type.bits(), 42, true, "lloyds_ship_type")?;
+        w.put(u64::from(self.gross_tonnage_raw), 18, "gross_tonnage")?;
+        w.put(u64::from(self.laden_ballast_raw), 2, "laden_ballast")?;
+        w.put(u64::from(self.heavy_oil_raw), 2, "heavy_oil")?;
+        w.put(u64::from(self.light_oil_raw), 2, "light_oil")?;
+        w.put(u64::from(self.diesel_raw), 2, "diesel")?;
+        w.put(u64::from(self.bunker_oil_raw), 14, "bunker_oil")?;
+        w.put(u64::from(self.persons_raw), 13, "persons")?;
+        w.put(u64::from(self.spare), 10, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.reading("air_draught", self.air_draught(), "air_draught_raw", i64::from(self.air_draught_raw))?;
+        j.text("last_port", self.last_port)?;
+        j.text("next_port1", self.next_port1)?;
+        j.text("next_port2", self.next_port2)?;
+        j.text("solas_status", self.solas_status)?;
+        j.reading("ice_class", self.ice_class(), "ice_class_raw", i64::from(self.ice_class_raw))?;
+        j.reading("shaft_power", self.shaft_power(), "shaft_power_raw", i64::from(self.shaft_power_raw))?;
+        j.reading("vhf", self.vhf(), "vhf_raw", i64::from(self.vhf_raw))?;
+        j.text("lloyds_ship_type", self.lloyds_ship_type)?;
+        j.reading("gross_tonnage", self.gross_tonnage(), "gross_tonnage_raw", i64::from(self.gross_tonnage_raw))?;
+        j.reading("laden_ballast", self.laden_ballast(), "laden_ballast_raw", i64::from(self.laden_ballast_raw))?;
+        j.reading("heavy_oil", self.heavy_oil(), "heavy_oil_raw", i64::from(self.heavy_oil_raw))?;
+        j.reading("light_oil", self.light_oil(), "light_oil_raw", i64::from(self.light_oil_raw))?;
+        j.reading("diesel", self.diesel(), "diesel_raw", i64::from(self.diesel_raw))?;
+        j.reading("bunker_oil", self.bunker_oil(), "bunker_oil_raw", i64::from(self.bunker_oil_raw))?;
+        j.reading("persons", self.persons(), "persons_raw", i64::from(self.persons_raw))?;
+        j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Weather observation report from ship: AIS application DAC 1 FI 21 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ShipWeather<'a> {
+    /// Type of weather report.
+    pub wmo: bool,
+    /// Geographic location.
+    pub location: Option<ais::SixBitText<'a>>,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Day (UTC).
+    pub day_raw: Option<u8>,
+    /// Hour (UTC).
+    pub hour_raw: Option<u8>,
+    /// Minute (UTC).
+    pub minute_raw: Option<u8>,
+    /// Present weather.
+    pub weather: Option<u8>,
+    /// Horizontal visibility [nautical miles].
+    pub visibility_raw: Option<u8>,
+    /// Relative humidity [percent].
+    pub humidity: Option<u8>,
+    /// Average wind speed [knots].
+    pub wspeed: Option<u8>,
+    /// Wind direction [degrees].
+    pub wdir: Option<u16>,
+    /// Air pressure.
+    pub pressure: Option<u16>,
+    /// Air pressure tendency.
+    pub pressure_tendency: Option<u8>,
+    /// Air temperature [degrees Celsius].
+    pub air_temp_raw: Option<i16>,
+    /// Water temperature [degrees Celsius].
+    pub water_temp_raw: Option<u16>,
+    /// Wave period [seconds].
+    pub wave_period: Option<u8>,
+    /// Wave height [metres].
+    pub wave_height_raw: Option<u8>,
+    /// Wave direction [degrees].
+    pub wave_dir: Option<u16>,
+    /// Swell height [metres].
+    pub swell_height_raw: Option<u8>,
+    /// Swell direction [degrees].
+    pub swell_dir: Option<u16>,
+    /// Swell period [seconds].
+    pub swell_period: Option<u8>,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Longitude [degrees].
+    pub wmo_lon_raw: Option<u16>,
+    /// Latitude.
+    pub wmo_lat: Option<u16>,
+    /// Month (UTC).
+    pub wmo_month: Option<u8>,
+    /// Day (UTC).
+    pub wmo_day: Option<u8>,
+    /// Hour (UTC).
+    pub wmo_hour: Option<u8>,
+    /// Minute (UTC).
+    pub wmo_minute: Option<u8>,
+    /// Course of the ship.
+    pub cog: Option<u8>,
+    /// Speed of the ship [knots].
+    pub sog_raw: Option<u8>,
+    /// Heading of the ship.
+    pub heading: Option<u8>,
+    /// Air pressure [hPa].
+    pub wmo_pressure_raw: Option<u16>,
+    /// Three-hour pressure change [hPa].
+    pub rel_pressure_raw: Option<u16>,
+    /// Air pressure tendency.
+    pub wmo_pressure_tendency: Option<u8>,
+    /// True wind direction.
+    pub wmo_wdir: Option<u8>,
+    /// True wind speed [metres per second].
+    pub wmo_wspeed_raw: Option<u8>,
+    /// Relative wind direction.
+    pub rel_wdir: Option<u8>,
+    /// Relative wind speed [metres per second].
+    pub rel_wspeed_raw: Option<u8>,
+    /// Maximum gust speed [metres per second].
+    pub gust_speed_raw: Option<u8>,
+    /// Maximum gust direction.
+    pub gust_dir: Option<u8>,
+    /// Air temperature.
+    pub wmo_air_temp: Option<u16>,
+    /// Relative humidity [percent].
+    pub wmo_humidity: Option<u8>,
+    /// Sea surface temperature.
+    pub wmo_water_temp: Option<u16>,
+    /// Horizontal visibility.
+    pub wmo_visibility: Option<u8>,
+    /// Present weather.
+    pub present_weather: Option<u16>,
+    /// Past weather (1).
+    pub past_weather1: Option<u8>,
+    /// Past weather (2).
+    pub past_weather2: Option<u8>,
+    /// Total cloud cover.
+    pub cloud_total: Option<u8>,
+    /// Cloud amount (low).
+    pub cloud_low: Option<u8>,
+    /// Cloud type (low).
+    pub cloud_low_type: Option<u8>,
+    /// Cloud type (middle).
+    pub cloud_middle_type: Option<u8>,
+    /// Cloud type (high).
+    pub cloud_high_type: Option<u8>,
+    /// Height of the lowest cloud base.
+    pub cloud_base: Option<u8>,
+    /// Wind wave period [seconds].
+    pub wmo_wave_period: Option<u8>,
+    /// Wind wave height [metres].
+    pub wmo_wave_height_raw: Option<u8>,
+    /// First swell direction.
+    pub wmo_swell_dir: Option<u8>,
+    /// First swell period [seconds].
+    pub wmo_swell_period: Option<u8>,
+    /// First swell height [metres].
+    pub wmo_swell_height_raw: Option<u8>,
+    /// Second swell direction.
+    pub swell2_dir: Option<u8>,
+    /// Second swell period [seconds].
+    pub swell2_period: Option<u8>,
+    /// Second swell height [metres].
+    pub swell2_height_raw: Option<u8>,
+    /// Ice deposit thickness [centimetres].
+    pub ice_thickness: Option<u8>,
+    /// Rate of ice accretion.
+    pub ice_accretion: Option<u8>,
+    /// Cause of ice accretion.
+    pub ice_cause: Option<u8>,
+    /// Sea ice concentration.
+    pub ice_concentration: Option<u8>,
+    /// Amount and type of ice.
+    pub ice_type: Option<u8>,
+    /// Ice situation.
+    pub ice_situation: Option<u8>,
+    /// Ice development.
+    pub ice_development: Option<u8>,
+    /// Bearing of the ice edge.
+    pub ice_bearing: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> ShipWeather<'a> {
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> Option<ais::Reading<i64>> {
+        self.day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> Option<ais::Reading<i64>> {
+        self.hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> Option<ais::Reading<i64>> {
+        self.minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Horizontal visibility [nautical miles], or its special value.
+    pub fn visibility(&self) -> Option<ais::Reading<f64>> {
+        self.visibility_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Air temperature [degrees Celsius], or its special value.
+    pub fn air_temp(&self) -> Option<ais::Reading<f64>> {
+        self.air_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn water_temp(&self) -> Option<ais::Reading<f64>> {
+        self.water_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -10.0, &[]))
+    }
+    /// Wave height [metres], or its special value.
+    pub fn wave_height(&self) -> Option<ais::Reading<f64>> {
+        self.wave_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Swell height [metres], or its special value.
+    pub fn swell_height(&self) -> Option<ais::Reading<f64>> {
+        self.swell_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn wmo_lon(&self) -> Option<ais::Reading<f64>> {
+        self.wmo_lon_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, -180.0, &[]))
+    }
+    /// Speed of the ship [knots], or its special value.
+    pub fn sog(&self) -> Option<ais::Reading<f64>> {
+        self.sog_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Air pressure [hPa], or its special value.
+    pub fn wmo_pressure(&self) -> Option<ais::Reading<f64>> {
+        self.wmo_pressure_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 900.0, &[]))
+    }
+    /// Three-hour pressure change [hPa], or its special value.
+    pub fn rel_pressure(&self) -> Option<ais::Reading<f64>> {
+        self.rel_pressure_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -50.0, &[]))
+    }
+    /// True wind speed [metres per second], or its special value.
+    pub fn wmo_wspeed(&self) -> Option<ais::Reading<f64>> {
+        self.wmo_wspeed_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Relative wind speed [metres per second], or its special value.
+    pub fn rel_wspeed(&self) -> Option<ais::Reading<f64>> {
+        self.rel_wspeed_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Maximum gust speed [metres per second], or its special value.
+    pub fn gust_speed(&self) -> Option<ais::Reading<f64>> {
+        self.gust_speed_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Wind wave height [metres], or its special value.
+    pub fn wmo_wave_height(&self) -> Option<ais::Reading<f64>> {
+        self.wmo_wave_height_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// First swell height [metres], or its special value.
+    pub fn wmo_swell_height(&self) -> Option<ais::Reading<f64>> {
+        self.wmo_swell_height_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Second swell height [metres], or its special value.
+    pub fn swell2_height(&self) -> Option<ais::Reading<f64>> {
+        self.swell2_height_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { wmo: r.take(1, "wmo")? == 1, ..Self::default() };
+        match u64::from(m.wmo) {
+            0 => {
+                m.location = Some(r.take_text(20, "location")?);
+                m.lon_raw = Some(r.take_signed(25, "lon")? as i32);
+                m.lat_raw = Some(r.take_signed(24, "lat")? as i32);
+                m.day_raw = Some(r.take(5, "day")? as u8);
+                m.hour_raw = Some(r.take(5, "hour")? as u8);
+                m.minute_raw = Some(r.take(6, "minute")? as u8);
+                m.weather = Some(r.take(4, "weather")? as u8);
+                m.visibility_raw = Some(r.take(8, "visibility")? as u8);
+                m.humidity = Some(r.take(7, "humidity")? as u8);
+                m.wspeed = Some(r.take(7, "wspeed")? as u8);
+                m.wdir = Some(r.take(9, "wdir")? as u16);
+                m.pressure = Some(r.take(9, "pressure")? as u16);
+                m.pressure_tendency = Some(r.take(4, "pressure_tendency")? as u8);
+                m.air_temp_raw = Some(r.take_signed(11, "air_temp")? as i16);
+                m.water_temp_raw = Some(r.take(10, "water_temp")? as u16);
+                m.wave_period = Some(r.take(6, "wave_period")? as u8);
+                m.wave_height_raw = Some(r.take(8, "wave_height")? as u8);
+                m.wave_dir = Some(r.take(9, "wave_dir")? as u16);
+                m.swell_height_raw = Some(r.take(8, "swell_height")? as u8);
+                m.swell_dir = Some(r.take(9, "swell_dir")? as u16);
+                m.swell_period = Some(r.take(6, "swell_period")? as u8);
+                m.spare = Some(r.take(3, "spare")? as u8);
+            }
+            _ => {
+                m.wmo_lon_raw = Some(r.take(16, "wmo_lon")? as u16);
+                m.wmo_lat = Some(r.take(15, "wmo_lat")? as u16);
+                m.wmo_month = Some(r.take(4, "wmo_month")? as u8);
+                m.wmo_day = Some(r.take(6, "wmo_day")? as u8);
+                m.wmo_hour = Some(r.take(5, "wmo_hour")? as u8);
+                m.wmo_minute = Some(r.take(3, "wmo_minute")? as u8);
+                m.cog = Some(r.take(7, "cog")? as u8);
+                m.sog_raw = Some(r.take(5, "sog")? as u8);
+                m.heading = Some(r.take(7, "heading")? as u8);
+                m.wmo_pressure_raw = Some(r.take(11, "wmo_pressure")? as u16);
+                m.rel_pressure_raw = Some(r.take(10, "rel_pressure")? as u16);
+                m.wmo_pressure_tendency = Some(r.take(4, "wmo_pressure_tendency")? as u8);
+                m.wmo_wdir = Some(r.take(7, "wmo_wdir")? as u8);
+                m.wmo_wspeed_raw = Some(r.take(8, "wmo_wspeed")? as u8);
+                m.rel_wdir = Some(r.take(7, "rel_wdir")? as u8);
+                m.rel_wspeed_raw = Some(r.take(8, "rel_wspeed")? as u8);
+                m.gust_speed_raw = Some(r.take(8, "gust_speed")? as u8);
+                m.gust_dir = Some(r.take(7, "gust_dir")? as u8);
+                m.wmo_air_temp = Some(r.take(10, "wmo_air_temp")? as u16);
+                m.wmo_humidity = Some(r.take(7, "wmo_humidity")? as u8);
+                m.wmo_water_temp = Some(r.take(9, "wmo_water_temp")? as u16);
+                m.wmo_visibility = Some(r.take(6, "wmo_visibility")? as u8);
+                m.present_weather = Some(r.take(9, "present_weather")? as u16);
+                m.past_weather1 = Some(r.take(5, "past_weather1")? as u8);
+                m.past_weather2 = Some(r.take(5, "past_weather2")? as u8);
+                m.cloud_total = Some(r.take(4, "cloud_total")? as u8);
+                m.cloud_low = Some(r.take(4, "cloud_low")? as u8);
+                m.cloud_low_type = Some(r.take(6, "cloud_low_type")? as u8);
+                m.cloud_middle_type = Some(r.take(6, "cloud_middle_type")? as u8);
+                m.cloud_high_type = Some(r.take(6, "cloud_high_type")? as u8);
+                m.cloud_base = Some(r.take(7, "cloud_base")? as u8);
+                m.wmo_wave_period = Some(r.take(5, "wmo_wave_period")? as u8);
+                m.wmo_wave_height_raw = Some(r.take(6, "wmo_wave_height")? as u8);
+                m.wmo_swell_dir = Some(r.take(6, "wmo_swell_dir")? as u8);
+                m.wmo_swell_period = Some(r.take(5, "wmo_swell_period")? as u8);
+                m.wmo_swell_height_raw = Some(r.take(6, "wmo_swell_height")? as u8);
+                m.swell2_dir = Some(r.take(6, "swell2_dir")? as u8);
+                m.swell2_period = Some(r.take(5, "swell2_period")? as u8);
+                m.swell2_height_raw = Some(r.take(6, "swell2_height")? as u8);
+                m.ice_thickness = Some(r.take(7, "ice_thickness")? as u8);
+                m.ice_accretion = Some(r.take(3, "ice_accretion")? as u8);
+                m.ice_cause = Some(r.take(3, "ice_cause")? as u8);
+                m.ice_concentration = Some(r.take(5, "ice_concentration")? as u8);
+                m.ice_type = Some(r.take(4, "ice_type")? as u8);
+                m.ice_situation = Some(r.take(5, "ice_situation")? as u8);
+                m.ice_development = Some(r.take(5, "ice_development")? as u8);
+                m.ice_bearing = Some(r.take(4, "ice_bearing")? as u8);
+            }
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.wmo), 1, "wmo")?;
+            match u64::from(self.wmo) {
+                0 => {
+                    let Some(v) = self.location else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 120, true, "location")?;
+                    let Some(v) = self.lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "lon")?;
+                    let Some(v) = self.lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "lat")?;
+                    let Some(v) = self.day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "day")?;
+                    let Some(v) = self.hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "hour")?;
+                    let Some(v) = self.minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "minute")?;
+                    let Some(v) = self.weather else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "weather")?;
+                    let Some(v) = self.visibility_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "visibility")?;
+                    let Some(v) = self.humidity else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "humidity")?;
+                    let Some(v) = self.wspeed else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wspeed")?;
+                    let Some(v) = self.wdir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wdir")?;
+                    let Some(v) = self.pressure else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "pressure")?;
+                    let Some(v) = self.pressure_tendency else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "pressure_tendency")?;
+                    let Some(v) = self.air_temp_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 11, "air_temp")?;
+                    let Some(v) = self.water_temp_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "water_temp")?;
+                    let Some(v) = self.wave_period else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wave_period")?;
+                    let Some(v) = self.wave_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wave_height")?;
+                    let Some(v) = self.wave_dir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wave_dir")?;
+                    let Some(v) = self.swell_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "swell_height")?;
+                    let Some(v) = self.swell_dir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "swell_dir")?;
+                    let Some(v) = self.swell_period else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "swell_period")?;
+                    let Some(v) = self.spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "spare")?;
+                }
+                _ => {
+                    let Some(v) = self.wmo_lon_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 16, "wmo_lon")?;
+                    let Some(v) = self.wmo_lat else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 15, "wmo_lat")?;
+                    let Some(v) = self.wmo_month else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "wmo_month")?;
+                    let Some(v) = self.wmo_day else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wmo_day")?;
+                    let Some(v) = self.wmo_hour else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wmo_hour")?;
+                    let Some(v) = self.wmo_minute else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wmo_minute")?;
+                    let Some(v) = self.cog else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "cog")?;
+                    let Some(v) = self.sog_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "sog")?;
+                    let Some(v) = self.heading else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "heading")?;
+                    let Some(v) = self.wmo_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 11, "wmo_pressure")?;
+                    let Some(v) = self.rel_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "rel_pressure")?;
+                    let Some(v) = self.wmo_pressure_tendency else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "wmo_pressure_tendency")?;
+                    let Some(v) = self.wmo_wdir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wmo_wdir")?;
+                    let Some(v) = self.wmo_wspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wmo_wspeed")?;
+                    let Some(v) = self.rel_wdir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "rel_wdir")?;
+                    let Some(v) = self.rel_wspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "rel_wspeed")?;
+                    let Some(v) = self.gust_speed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "gust_speed")?;
+                    let Some(v) = self.gust_dir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "gust_dir")?;
+                    let Some(v) = self.wmo_air_temp else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "wmo_air_temp")?;
+                    let Some(v) = self.wmo_humidity else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wmo_humidity")?;
+                    let Some(v) = self.wmo_water_temp else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wmo_water_temp")?;
+                    let Some(v) = self.wmo_visibility else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wmo_visibility")?;
+                    let Some(v) = self.present_weather else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "present_weather")?;
+                    let Some(v) = self.past_weather1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "past_weather1")?;
+                    let Some(v) = self.past_weather2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "past_weather2")?;
+                    let Some(v) = self.cloud_total else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "cloud_total")?;
+                    let Some(v) = self.cloud_low else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "cloud_low")?;
+                    let Some(v) = self.cloud_low_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "cloud_low_type")?;
+                    let Some(v) = self.cloud_middle_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "cloud_middle_type")?;
+                    let Some(v) = self.cloud_high_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "cloud_high_type")?;
+                    let Some(v) = self.cloud_base else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "cloud_base")?;
+                    let Some(v) = self.wmo_wave_period else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wmo_wave_period")?;
+                    let Some(v) = self.wmo_wave_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wmo_wave_height")?;
+                    let Some(v) = self.wmo_swell_dir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wmo_swell_dir")?;
+                    let Some(v) = self.wmo_swell_period else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wmo_swell_period")?;
+                    let Some(v) = self.wmo_swell_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wmo_swell_height")?;
+                    let Some(v) = self.swell2_dir else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "swell2_dir")?;
+                    let Some(v) = self.swell2_period else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "swell2_period")?;
+                    let Some(v) = self.swell2_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "swell2_height")?;
+                    let Some(v) = self.ice_thickness else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "ice_thickness")?;
+                    let Some(v) = self.ice_accretion else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "ice_accretion")?;
+                    let Some(v) = self.ice_cause else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "ice_cause")?;
+                    let Some(v) = self.ice_concentration else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "ice_concentration")?;
+                    let Some(v) = self.ice_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "ice_type")?;
+                    let Some(v) = self.ice_situation else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "ice_situation")?;
+                    let Some(v) = self.ice_development else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "ice_development")?;
+                    let Some(v) = self.ice_bearing else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "ice_bearing")?;
+                }
+            }
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.flag("wmo", self.wmo)?;
+        if let Some(v) = self.location {
+            j.text("location", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.day_raw, self.day()) {
+            j.reading("day", reading, "day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hour_raw, self.hour()) {
+            j.reading("hour", reading, "hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.minute_raw, self.minute()) {
+            j.reading("minute", reading, "minute_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.weather {
+            j.int("weather", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.visibility_raw, self.visibility()) {
+            j.reading("visibility", reading, "visibility_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.humidity {
+            j.int("humidity", v)?;
+        }
+        if let Some(v) = self.wspeed {
+            j.int("wspeed", v)?;
+        }
+        if let Some(v) = self.wdir {
+            j.int("wdir", v)?;
+        }
+        if let Some(v) = self.pressure {
+            j.int("pressure", v)?;
+        }
+        if let Some(v) = self.pressure_tendency {
+            j.int("pressure_tendency", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_temp_raw, self.air_temp()) {
+            j.reading("air_temp", reading, "air_temp_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_temp_raw, self.water_temp()) {
+            j.reading("water_temp", reading, "water_temp_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wave_period {
+            j.int("wave_period", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_height_raw, self.wave_height()) {
+            j.reading("wave_height", reading, "wave_height_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wave_dir {
+            j.int("wave_dir", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_height_raw, self.swell_height()) {
+            j.reading("swell_height", reading, "swell_height_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.swell_dir {
+            j.int("swell_dir", v)?;
+        }
+        if let Some(v) = self.swell_period {
+            j.int("swell_period", v)?;
+        }
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wmo_lon_raw, self.wmo_lon()) {
+            j.reading("wmo_lon", reading, "wmo_lon_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wmo_lat {
+            j.int("wmo_lat", v)?;
+        }
+        if let Some(v) = self.wmo_month {
+            j.int("wmo_month", v)?;
+        }
+        if let Some(v) = self.wmo_day {
+            j.int("wmo_day", v)?;
+        }
+        if let Some(v) = self.wmo_hour {
+            j.int("wmo_hour", v)?;
+        }
+        if let Some(v) = self.wmo_minute {
+            j.int("wmo_minute", v)?;
+        }
+        if let Some(v) = self.cog {
+            j.int("cog", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.sog_raw, self.sog()) {
+            j.reading("sog", reading, "sog_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.heading {
+            j.int("heading", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wmo_pressure_raw, self.wmo_pressure()) {
+            j.reading("wmo_pressure", reading, "wmo_pressure_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.rel_pressure_raw, self.rel_pressure()) {
+            j.reading("rel_pressure", reading, "rel_pressure_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wmo_pressure_tendency {
+            j.int("wmo_pressure_tendency", v)?;
+        }
+        if let Some(v) = self.wmo_wdir {
+            j.int("wmo_wdir", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wmo_wspeed_raw, self.wmo_wspeed()) {
+            j.reading("wmo_wspeed", reading, "wmo_wspeed_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.rel_wdir {
+            j.int("rel_wdir", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.rel_wspeed_raw, self.rel_wspeed()) {
+            j.reading("rel_wspeed", reading, "rel_wspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.gust_speed_raw, self.gust_speed()) {
+            j.reading("gust_speed", reading, "gust_speed_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.gust_dir {
+            j.int("gust_dir", v)?;
+        }
+        if let Some(v) = self.wmo_air_temp {
+            j.int("wmo_air_temp", v)?;
+        }
+        if let Some(v) = self.wmo_humidity {
+            j.int("wmo_humidity", v)?;
+        }
+        if let Some(v) = self.wmo_water_temp {
+            j.int("wmo_water_temp", v)?;
+        }
+        if let Some(v) = self.wmo_visibility {
+            j.int("wmo_visibility", v)?;
+        }
+        if let Some(v) = self.present_weather {
+            j.int("present_weather", v)?;
+        }
+        if let Some(v) = self.past_weather1 {
+            j.int("past_weather1", v)?;
+        }
+        if let Some(v) = self.past_weather2 {
+            j.int("past_weather2", v)?;
+        }
+        if let Some(v) = self.cloud_total {
+            j.int("cloud_total", v)?;
+        }
+        if let Some(v) = self.cloud_low {
+            j.int("cloud_low", v)?;
+        }
+        if let Some(v) = self.cloud_low_type {
+            j.int("cloud_low_type", v)?;
+        }
+        if let Some(v) = self.cloud_middle_type {
+            j.int("cloud_middle_type", v)?;
+        }
+        if let Some(v) = self.cloud_high_type {
+            j.int("cloud_high_type", v)?;
+        }
+        if let Some(v) = self.cloud_base {
+            j.int("cloud_base", v)?;
+        }
+        if let Some(v) = self.wmo_wave_period {
+            j.int("wmo_wave_period", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wmo_wave_height_raw, self.wmo_wave_height()) {
+            j.reading("wmo_wave_height", reading, "wmo_wave_height_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wmo_swell_dir {
+            j.int("wmo_swell_dir", v)?;
+        }
+        if let Some(v) = self.wmo_swell_period {
+            j.int("wmo_swell_period", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wmo_swell_height_raw, self.wmo_swell_height()) {
+            j.reading("wmo_swell_height", reading, "wmo_swell_height_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.swell2_dir {
+            j.int("swell2_dir", v)?;
+        }
+        if let Some(v) = self.swell2_period {
+            j.int("swell2_period", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell2_height_raw, self.swell2_height()) {
+            j.reading("swell2_height", reading, "swell2_height_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.ice_thickness {
+            j.int("ice_thickness", v)?;
+        }
+        if let Some(v) = self.ice_accretion {
+            j.int("ice_accretion", v)?;
+        }
+        if let Some(v) = self.ice_cause {
+            j.int("ice_cause", v)?;
+        }
+        if let Some(v) = self.ice_concentration {
+            j.int("ice_concentration", v)?;
+        }
+        if let Some(v) = self.ice_type {
+            j.int("ice_type", v)?;
+        }
+        if let Some(v) = self.ice_situation {
+            j.int("ice_situation", v)?;
+        }
+        if let Some(v) = self.ice_development {
+            j.int("ice_development", v)?;
+        }
+        if let Some(v) = self.ice_bearing {
+            j.int("ice_bearing", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Text description (addressed): AIS application DAC 1 FI 30 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct TextAddressed<'a> {
@@ -7565,89 +9510,2038 @@ impl<'a> TidalWindowImo236<'a> {
     }
 }
 
-/// One entry of VtsTargetsTarget.
+/// Marine traffic signal: AIS application DAC 1 FI 19 (in type 8).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct VtsTargetsTarget {
-    /// Type of target identifier.
-    pub idtype: u8,
-    /// Target identifier.
-    pub id: u64,
-    /// Spare.
-    pub spare: u8,
-    /// Latitude [degrees].
-    pub lat_raw: i32,
+pub struct TrafficSignal<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Name of the signal station.
+    pub station: ais::SixBitText<'a>,
     /// Longitude [degrees].
     pub lon_raw: i32,
-    /// Course over ground [degrees].
-    pub course_raw: u16,
-    /// Time stamp (UTC second).
-    pub second_raw: u8,
-    /// Speed over ground [knots].
-    pub speed_raw: u8,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Status of the signal.
+    pub status_raw: u8,
+    /// Signal in service.
+    pub signal_raw: u8,
+    /// Hour of the next signal shift (UTC).
+    pub hour_raw: u8,
+    /// Minute of the next signal shift (UTC).
+    pub minute_raw: u8,
+    /// Expected next signal.
+    pub next_signal_raw: u8,
+    /// Spare.
+    pub spare: Option<u64>,
+    /// Spare.
+    pub spare2: Option<u64>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
 }
 
-impl VtsTargetsTarget {
-    /// Latitude [degrees], or its special value.
-    pub fn lat(&self) -> ais::Reading<f64> {
-        let raw = self.lat_raw;
-        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
-    }
+impl<'a> TrafficSignal<'a> {
     /// Longitude [degrees], or its special value.
     pub fn lon(&self) -> ais::Reading<f64> {
         let raw = self.lon_raw;
         ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
     }
-    /// Course over ground [degrees], or its special value.
-    pub fn course(&self) -> ais::Reading<i64> {
-        let raw = self.course_raw;
-        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
     }
-    /// Time stamp (UTC second), or its special value.
-    pub fn second(&self) -> ais::Reading<i64> {
-        let raw = self.second_raw;
+    /// Status of the signal, or its special value.
+    pub fn status(&self) -> ais::Reading<i64> {
+        let raw = self.status_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Signal in service, or its special value.
+    pub fn signal(&self) -> ais::Reading<i64> {
+        let raw = self.signal_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour of the next signal shift (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute of the next signal shift (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
         ais::counted(i64::from(raw), 0, &[(60, "not_available")])
     }
-    /// Speed over ground [knots], or its special value.
-    pub fn speed(&self) -> ais::Reading<i64> {
-        let raw = self.speed_raw;
-        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    /// Expected next signal, or its special value.
+    pub fn next_signal(&self) -> ais::Reading<i64> {
+        let raw = self.next_signal_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
     }
     /// Reads the layout's fields from `r`.
-    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
-        let m = Self {
-            idtype: r.take(2, "idtype")? as u8,
-            id: r.take(42, "id")?,
-            spare: r.take(4, "spare")? as u8,
-            lat_raw: r.take_signed(24, "lat")? as i32,
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            station: r.take_text(20, "station")?,
             lon_raw: r.take_signed(25, "lon")? as i32,
-            course_raw: r.take(9, "course")? as u16,
-            second_raw: r.take(6, "second")? as u8,
-            speed_raw: r.take(8, "speed")? as u8,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            status_raw: r.take(2, "status")? as u8,
+            signal_raw: r.take(5, "signal")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            next_signal_raw: r.take(5, "next_signal")? as u8,
+            ..Self::default()
         };
+        'read: {
+            if r.remaining() < 64 {
+                break 'read;
+            }
+            m.spare = Some(r.take(64, "spare")?);
+            if r.remaining() < 38 {
+                break 'read;
+            }
+            m.spare2 = Some(r.take(38, "spare2")?);
+        }
+        m.trailing = r.rest();
         Ok(m)
     }
     /// Writes the layout's fields to `w`.
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
-        w.put(u64::from(self.idtype), 2, "idtype")?;
-        w.put(self.id, 42, "id")?;
-        w.put(u64::from(self.spare), 4, "spare")?;
-        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
-        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
-        w.put(u64::from(self.course_raw), 9, "course")?;
-        w.put(u64::from(self.second_raw), 6, "second")?;
-        w.put(u64::from(self.speed_raw), 8, "speed")?;
+        'write: {
+            w.put(u64::from(self.linkage), 10, "linkage")?;
+            w.put_fixed(self.station.bits(), 120, true, "station")?;
+            w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+            w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+            w.put(u64::from(self.status_raw), 2, "status")?;
+            w.put(u64::from(self.signal_raw), 5, "signal")?;
+            w.put(u64::from(self.hour_raw), 5, "hour")?;
+            w.put(u64::from(self.minute_raw), 6, "minute")?;
+            w.put(u64::from(self.next_signal_raw), 5, "next_signal")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(v, 64, "spare")?;
+            let Some(v) = self.spare2 else {
+                break 'write;
+            };
+            w.put(v, 38, "spare2")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.text("station", self.station)?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("status", self.status(), "status_raw", i64::from(self.status_raw))?;
+        j.reading("signal", self.signal(), "signal_raw", i64::from(self.signal_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("next_signal", self.next_signal(), "next_signal_raw", i64::from(self.next_signal_raw))?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let Some(v) = self.spare2 {
+            j.int("spare2", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of UscgEnvironmentalReport.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct UscgEnvironmentalReport<'a> {
+    /// Report type.
+    pub report_type: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Site id.
+    pub site: u8,
+    /// Version.
+    pub version: Option<u8>,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Precision.
+    pub precision: Option<u8>,
+    /// Altitude [metres].
+    pub altitude_raw: Option<u16>,
+    /// Sensor owner.
+    pub owner: Option<u8>,
+    /// Data timeout.
+    pub timeout: Option<u8>,
+    /// Spare.
+    pub location_spare: Option<u8>,
+    /// Station name.
+    pub name: Option<ais::SixBitText<'a>>,
+    /// Spare.
+    pub station_spare: Option<u8>,
+    /// Average wind speed [knots].
+    pub wspeed_raw: Option<u8>,
+    /// Wind gust [knots].
+    pub wgust_raw: Option<u8>,
+    /// Wind direction [degrees].
+    pub wdir_raw: Option<u16>,
+    /// Wind gust direction [degrees].
+    pub wgustdir_raw: Option<u16>,
+    /// Wind sensor.
+    pub wind_sensor_raw: Option<u8>,
+    /// Forecast wind speed [knots].
+    pub fwspeed_raw: Option<u8>,
+    /// Forecast wind gust [knots].
+    pub fwgust_raw: Option<u8>,
+    /// Forecast wind direction [degrees].
+    pub fwdir_raw: Option<u16>,
+    /// Forecast day (UTC).
+    pub wind_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub wind_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub wind_minute_raw: Option<u8>,
+    /// Forecast duration [minutes].
+    pub wind_duration_raw: Option<u8>,
+    /// Spare.
+    pub wind_spare: Option<u8>,
+    /// Water level type.
+    pub absolute: Option<bool>,
+    /// Water level [metres].
+    pub level_raw: Option<i16>,
+    /// Water level trend.
+    pub level_trend_raw: Option<u8>,
+    /// Vertical reference datum.
+    pub datum_raw: Option<u8>,
+    /// Water level sensor.
+    pub level_sensor_raw: Option<u8>,
+    /// Forecast water level type.
+    pub forecast_absolute: Option<bool>,
+    /// Forecast water level [metres].
+    pub forecast_level_raw: Option<i16>,
+    /// Forecast day (UTC).
+    pub level_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub level_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub level_minute_raw: Option<u8>,
+    /// Forecast duration [minutes].
+    pub level_duration_raw: Option<u8>,
+    /// Spare.
+    pub level_spare: Option<u32>,
+    /// Current speed at depth 1 [knots].
+    pub cspeed1_raw: Option<u8>,
+    /// Current direction at depth 1 [degrees].
+    pub cdir1_raw: Option<u16>,
+    /// Depth 1 [metres].
+    pub cdepth1_raw: Option<u16>,
+    /// Current speed at depth 2 [knots].
+    pub cspeed2_raw: Option<u8>,
+    /// Current direction at depth 2 [degrees].
+    pub cdir2_raw: Option<u16>,
+    /// Depth 2 [metres].
+    pub cdepth2_raw: Option<u16>,
+    /// Current speed at depth 3 [knots].
+    pub cspeed3_raw: Option<u8>,
+    /// Current direction at depth 3 [degrees].
+    pub cdir3_raw: Option<u16>,
+    /// Depth 3 [metres].
+    pub cdepth3_raw: Option<u16>,
+    /// Current sensor.
+    pub current_sensor_raw: Option<u8>,
+    /// Spare.
+    pub current_spare: Option<u8>,
+    /// North component at depth 1 [knots].
+    pub cnorth1_raw: Option<u16>,
+    /// East component at depth 1 [knots].
+    pub ceast1_raw: Option<u16>,
+    /// Up component at depth 1 [knots].
+    pub cup1_raw: Option<u16>,
+    /// Depth 1 [metres].
+    pub c3depth1: Option<u16>,
+    /// North component at depth 2 [knots].
+    pub cnorth2_raw: Option<u16>,
+    /// East component at depth 2 [knots].
+    pub ceast2_raw: Option<u16>,
+    /// Up component at depth 2 [knots].
+    pub cup2_raw: Option<u16>,
+    /// Depth 2 [metres].
+    pub c3depth2: Option<u16>,
+    /// Current sensor.
+    pub current3d_sensor_raw: Option<u8>,
+    /// Spare.
+    pub current3d_spare: Option<u16>,
+    /// Bearing [degrees].
+    pub hbearing: Option<u16>,
+    /// Distance of point 1 [metres].
+    pub hdistance1: Option<u16>,
+    /// Current speed at point 1 [knots].
+    pub hspeed1_raw: Option<u8>,
+    /// Current direction at point 1 [degrees].
+    pub hdir1: Option<u16>,
+    /// Level of point 1 [metres].
+    pub hlevel1: Option<u16>,
+    /// Distance of point 2 [metres].
+    pub hdistance2: Option<u16>,
+    /// Current speed at point 2 [knots].
+    pub hspeed2_raw: Option<u8>,
+    /// Current direction at point 2 [degrees].
+    pub hdir2: Option<u16>,
+    /// Level of point 2 [metres].
+    pub hlevel2: Option<u16>,
+    /// Current sensor.
+    pub horizontal_sensor_raw: Option<u8>,
+    /// Spare.
+    pub horizontal_spare: Option<u8>,
+    /// Swell height [metres].
+    pub swell_height_raw: Option<u8>,
+    /// Swell period [seconds].
+    pub swell_period_raw: Option<u8>,
+    /// Swell direction [degrees].
+    pub swell_dir_raw: Option<u16>,
+    /// Sea state.
+    pub sea_state_raw: Option<u8>,
+    /// Swell sensor.
+    pub swell_sensor_raw: Option<u8>,
+    /// Water temperature [degrees Celsius].
+    pub water_temp_raw: Option<u16>,
+    /// Water temperature depth [metres].
+    pub water_temp_depth_raw: Option<u8>,
+    /// Water temperature sensor.
+    pub water_sensor_raw: Option<u8>,
+    /// Wave height [metres].
+    pub wave_height_raw: Option<u8>,
+    /// Wave period [seconds].
+    pub wave_period_raw: Option<u8>,
+    /// Wave direction [degrees].
+    pub wave_dir_raw: Option<u16>,
+    /// Wave sensor.
+    pub wave_sensor_raw: Option<u8>,
+    /// Salinity [percent].
+    pub sea_salinity_raw: Option<u16>,
+    /// Water temperature [degrees Celsius].
+    pub salinity_water_temp_raw: Option<u16>,
+    /// Conductivity [siemens per metre].
+    pub conductivity_raw: Option<u16>,
+    /// Water pressure [decibar].
+    pub water_pressure_raw: Option<u16>,
+    /// Salinity [percent].
+    pub salinity_raw: Option<u16>,
+    /// Salinity type.
+    pub salinity_type: Option<u8>,
+    /// Salinity sensor.
+    pub salinity_sensor_raw: Option<u8>,
+    /// Spare.
+    pub salinity_spare: Option<u64>,
+    /// Air temperature [degrees Celsius].
+    pub air_temp_raw: Option<i16>,
+    /// Air temperature sensor.
+    pub air_temp_sensor_raw: Option<u8>,
+    /// Precipitation type.
+    pub precipitation: Option<u8>,
+    /// Horizontal visibility [nautical miles].
+    pub visibility_raw: Option<u8>,
+    /// Dew point [degrees Celsius].
+    pub dew_point_raw: Option<u16>,
+    /// Dew point sensor.
+    pub dew_point_sensor_raw: Option<u8>,
+    /// Air pressure [hPa].
+    pub air_pressure_raw: Option<u16>,
+    /// Air pressure tendency.
+    pub pressure_tendency_raw: Option<u8>,
+    /// Air pressure sensor.
+    pub pressure_sensor_raw: Option<u8>,
+    /// Salinity [percent].
+    pub weather_salinity_raw: Option<u16>,
+    /// Spare.
+    pub weather_spare: Option<u32>,
+    /// Air draught [metres].
+    pub air_draught_raw: Option<u16>,
+    /// Air gap [metres].
+    pub air_gap_raw: Option<u16>,
+    /// Air gap trend.
+    pub air_gap_trend_raw: Option<u8>,
+    /// Forecast air gap [metres].
+    pub forecast_air_gap_raw: Option<u16>,
+    /// Forecast day (UTC).
+    pub air_gap_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub air_gap_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub air_gap_minute_raw: Option<u8>,
+    /// Air gap sensor.
+    pub air_gap_sensor_raw: Option<u8>,
+    /// Spare.
+    pub air_gap_spare: Option<u32>,
+    /// Average wind speed [knots].
+    pub wind2_speed_raw: Option<u8>,
+    /// Wind gust [knots].
+    pub wind2_gust_raw: Option<u8>,
+    /// Wind direction [degrees].
+    pub wind2_dir_raw: Option<u16>,
+    /// Averaging time [minutes].
+    pub averaging_time: Option<u8>,
+    /// Wind sensor.
+    pub wind2_sensor_raw: Option<u8>,
+    /// Forecast wind speed [knots].
+    pub wind2_fspeed_raw: Option<u8>,
+    /// Forecast wind gust [knots].
+    pub wind2_fgust_raw: Option<u8>,
+    /// Forecast wind direction [degrees].
+    pub wind2_fdir_raw: Option<u16>,
+    /// Forecast hour (UTC).
+    pub wind2_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub wind2_minute_raw: Option<u8>,
+    /// Forecast duration [minutes].
+    pub wind2_duration_raw: Option<u8>,
+    /// Spare.
+    pub wind2_spare: Option<u16>,
+    /// Bits of a reserved report type.
+    pub reserved: Option<ais::Bits<'a>>,
+}
+
+impl<'a> UscgEnvironmentalReport<'a> {
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")]))
+    }
+    /// Altitude [metres], or its special value.
+    pub fn altitude(&self) -> Option<ais::Reading<f64>> {
+        self.altitude_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Average wind speed [knots], or its special value.
+    pub fn wspeed(&self) -> Option<ais::Reading<i64>> {
+        self.wspeed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind gust [knots], or its special value.
+    pub fn wgust(&self) -> Option<ais::Reading<i64>> {
+        self.wgust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind direction [degrees], or its special value.
+    pub fn wdir(&self) -> Option<ais::Reading<i64>> {
+        self.wdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wind gust direction [degrees], or its special value.
+    pub fn wgustdir(&self) -> Option<ais::Reading<i64>> {
+        self.wgustdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wind sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn wind_sensor(&self) -> Option<AisSensorDescription> {
+        self.wind_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Forecast wind speed [knots], or its special value.
+    pub fn fwspeed(&self) -> Option<ais::Reading<i64>> {
+        self.fwspeed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind gust [knots], or its special value.
+    pub fn fwgust(&self) -> Option<ais::Reading<i64>> {
+        self.fwgust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind direction [degrees], or its special value.
+    pub fn fwdir(&self) -> Option<ais::Reading<i64>> {
+        self.fwdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn wind_day(&self) -> Option<ais::Reading<i64>> {
+        self.wind_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn wind_hour(&self) -> Option<ais::Reading<i64>> {
+        self.wind_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn wind_minute(&self) -> Option<ais::Reading<i64>> {
+        self.wind_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Forecast duration [minutes], or its special value.
+    pub fn wind_duration(&self) -> Option<ais::Reading<i64>> {
+        self.wind_duration_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Water level [metres], or its special value.
+    pub fn level(&self) -> Option<ais::Reading<f64>> {
+        self.level_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "not_available")]))
+    }
+    /// Water level trend, or its special value.
+    pub fn level_trend(&self) -> Option<ais::Reading<i64>> {
+        self.level_trend_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Vertical reference datum, or its special value.
+    pub fn datum(&self) -> Option<ais::Reading<i64>> {
+        self.datum_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(14, "not_available")]))
+    }
+    /// Water level sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn level_sensor(&self) -> Option<AisSensorDescription> {
+        self.level_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Forecast water level [metres], or its special value.
+    pub fn forecast_level(&self) -> Option<ais::Reading<f64>> {
+        self.forecast_level_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn level_day(&self) -> Option<ais::Reading<i64>> {
+        self.level_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn level_hour(&self) -> Option<ais::Reading<i64>> {
+        self.level_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn level_minute(&self) -> Option<ais::Reading<i64>> {
+        self.level_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Forecast duration [minutes], or its special value.
+    pub fn level_duration(&self) -> Option<ais::Reading<i64>> {
+        self.level_duration_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Current speed at depth 1 [knots], or its special value.
+    pub fn cspeed1(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 1 [degrees], or its special value.
+    pub fn cdir1(&self) -> Option<ais::Reading<i64>> {
+        self.cdir1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 1 [metres], or its special value.
+    pub fn cdepth1(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current speed at depth 2 [knots], or its special value.
+    pub fn cspeed2(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 2 [degrees], or its special value.
+    pub fn cdir2(&self) -> Option<ais::Reading<i64>> {
+        self.cdir2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 2 [metres], or its special value.
+    pub fn cdepth2(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current speed at depth 3 [knots], or its special value.
+    pub fn cspeed3(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed3_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 3 [degrees], or its special value.
+    pub fn cdir3(&self) -> Option<ais::Reading<i64>> {
+        self.cdir3_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 3 [metres], or its special value.
+    pub fn cdepth3(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth3_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn current_sensor(&self) -> Option<AisSensorDescription> {
+        self.current_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// North component at depth 1 [knots], or its special value.
+    pub fn cnorth1(&self) -> Option<ais::Reading<f64>> {
+        self.cnorth1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// East component at depth 1 [knots], or its special value.
+    pub fn ceast1(&self) -> Option<ais::Reading<f64>> {
+        self.ceast1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Up component at depth 1 [knots], or its special value.
+    pub fn cup1(&self) -> Option<ais::Reading<f64>> {
+        self.cup1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// North component at depth 2 [knots], or its special value.
+    pub fn cnorth2(&self) -> Option<ais::Reading<f64>> {
+        self.cnorth2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// East component at depth 2 [knots], or its special value.
+    pub fn ceast2(&self) -> Option<ais::Reading<f64>> {
+        self.ceast2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Up component at depth 2 [knots], or its special value.
+    pub fn cup2(&self) -> Option<ais::Reading<f64>> {
+        self.cup2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Current sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn current3d_sensor(&self) -> Option<AisSensorDescription> {
+        self.current3d_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Current speed at point 1 [knots], or its special value.
+    pub fn hspeed1(&self) -> Option<ais::Reading<f64>> {
+        self.hspeed1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Current speed at point 2 [knots], or its special value.
+    pub fn hspeed2(&self) -> Option<ais::Reading<f64>> {
+        self.hspeed2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[]))
+    }
+    /// Current sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn horizontal_sensor(&self) -> Option<AisSensorDescription> {
+        self.horizontal_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Swell height [metres], or its special value.
+    pub fn swell_height(&self) -> Option<ais::Reading<f64>> {
+        self.swell_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Swell period [seconds], or its special value.
+    pub fn swell_period(&self) -> Option<ais::Reading<i64>> {
+        self.swell_period_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(61, "not_available")]))
+    }
+    /// Swell direction [degrees], or its special value.
+    pub fn swell_dir(&self) -> Option<ais::Reading<i64>> {
+        self.swell_dir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Sea state, or its special value.
+    pub fn sea_state(&self) -> Option<ais::Reading<i64>> {
+        self.sea_state_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(13, "not_available")]))
+    }
+    /// Swell sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn swell_sensor(&self) -> Option<AisSensorDescription> {
+        self.swell_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn water_temp(&self) -> Option<ais::Reading<f64>> {
+        self.water_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -10.0, &[(601, "not_available")]))
+    }
+    /// Water temperature depth [metres], or its special value.
+    pub fn water_temp_depth(&self) -> Option<ais::Reading<f64>> {
+        self.water_temp_depth_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(122, "not_available")]))
+    }
+    /// Water temperature sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn water_sensor(&self) -> Option<AisSensorDescription> {
+        self.water_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Wave height [metres], or its special value.
+    pub fn wave_height(&self) -> Option<ais::Reading<f64>> {
+        self.wave_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Wave period [seconds], or its special value.
+    pub fn wave_period(&self) -> Option<ais::Reading<i64>> {
+        self.wave_period_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(61, "not_available")]))
+    }
+    /// Wave direction [degrees], or its special value.
+    pub fn wave_dir(&self) -> Option<ais::Reading<i64>> {
+        self.wave_dir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wave sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn wave_sensor(&self) -> Option<AisSensorDescription> {
+        self.wave_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn sea_salinity(&self) -> Option<ais::Reading<f64>> {
+        self.sea_salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn salinity_water_temp(&self) -> Option<ais::Reading<f64>> {
+        self.salinity_water_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -10.0, &[(601, "not_available")]))
+    }
+    /// Conductivity [siemens per metre], or its special value.
+    pub fn conductivity(&self) -> Option<ais::Reading<f64>> {
+        self.conductivity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(702, "not_available"), (703, "no_sensor")]))
+    }
+    /// Water pressure [decibar], or its special value.
+    pub fn water_pressure(&self) -> Option<ais::Reading<f64>> {
+        self.water_pressure_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(60002, "not_available"), (60003, "no_sensor")]))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn salinity(&self) -> Option<ais::Reading<f64>> {
+        self.salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Salinity sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn salinity_sensor(&self) -> Option<AisSensorDescription> {
+        self.salinity_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Air temperature [degrees Celsius], or its special value.
+    pub fn air_temp(&self) -> Option<ais::Reading<f64>> {
+        self.air_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(-1024, "not_available")]))
+    }
+    /// Air temperature sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn air_temp_sensor(&self) -> Option<AisSensorDescription> {
+        self.air_temp_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Horizontal visibility [nautical miles], or its special value.
+    pub fn visibility(&self) -> Option<ais::Reading<f64>> {
+        self.visibility_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(242, "not_available"), (243, "no_sensor")]))
+    }
+    /// Dew point [degrees Celsius], or its special value.
+    pub fn dew_point(&self) -> Option<ais::Reading<f64>> {
+        self.dew_point_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -20.0, &[(701, "not_available")]))
+    }
+    /// Dew point sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn dew_point_sensor(&self) -> Option<AisSensorDescription> {
+        self.dew_point_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Air pressure [hPa], or its special value.
+    pub fn air_pressure(&self) -> Option<ais::Reading<i64>> {
+        self.air_pressure_raw.map(|raw| ais::counted(i64::from(raw), 799, &[(403, "not_available")]))
+    }
+    /// Air pressure tendency, or its special value.
+    pub fn pressure_tendency(&self) -> Option<ais::Reading<i64>> {
+        self.pressure_tendency_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Air pressure sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn pressure_sensor(&self) -> Option<AisSensorDescription> {
+        self.pressure_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn weather_salinity(&self) -> Option<ais::Reading<f64>> {
+        self.weather_salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Air draught [metres], or its special value.
+    pub fn air_draught(&self) -> Option<ais::Reading<f64>> {
+        self.air_draught_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Air gap [metres], or its special value.
+    pub fn air_gap(&self) -> Option<ais::Reading<f64>> {
+        self.air_gap_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Air gap trend, or its special value.
+    pub fn air_gap_trend(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_trend_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Forecast air gap [metres], or its special value.
+    pub fn forecast_air_gap(&self) -> Option<ais::Reading<f64>> {
+        self.forecast_air_gap_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn air_gap_day(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn air_gap_hour(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn air_gap_minute(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Air gap sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn air_gap_sensor(&self) -> Option<AisSensorDescription> {
+        self.air_gap_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Average wind speed [knots], or its special value.
+    pub fn wind2_speed(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_speed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind gust [knots], or its special value.
+    pub fn wind2_gust(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_gust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind direction [degrees], or its special value.
+    pub fn wind2_dir(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_dir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wind sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn wind2_sensor(&self) -> Option<AisSensorDescription> {
+        self.wind2_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Forecast wind speed [knots], or its special value.
+    pub fn wind2_fspeed(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_fspeed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind gust [knots], or its special value.
+    pub fn wind2_fgust(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_fgust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind direction [degrees], or its special value.
+    pub fn wind2_fdir(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_fdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn wind2_hour(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn wind2_minute(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Forecast duration [minutes], or its special value.
+    pub fn wind2_duration(&self) -> Option<ais::Reading<i64>> {
+        self.wind2_duration_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            report_type: r.take(4, "report_type")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            site: r.take(7, "site")? as u8,
+            ..Self::default()
+        };
+        match u64::from(m.report_type) {
+            0 => {
+                m.version = Some(r.take(6, "version")? as u8);
+                m.lon_raw = Some(r.take_signed(28, "lon")? as i32);
+                m.lat_raw = Some(r.take_signed(27, "lat")? as i32);
+                m.precision = Some(r.take(3, "precision")? as u8);
+                m.altitude_raw = Some(r.take(12, "altitude")? as u16);
+                m.owner = Some(r.take(4, "owner")? as u8);
+                m.timeout = Some(r.take(3, "timeout")? as u8);
+                m.location_spare = Some(r.take(2, "location_spare")? as u8);
+            }
+            1 => {
+                m.name = Some(r.take_text(14, "name")?);
+                m.station_spare = Some(r.take(1, "station_spare")? as u8);
+            }
+            2 => {
+                m.wspeed_raw = Some(r.take(7, "wspeed")? as u8);
+                m.wgust_raw = Some(r.take(7, "wgust")? as u8);
+                m.wdir_raw = Some(r.take(9, "wdir")? as u16);
+                m.wgustdir_raw = Some(r.take(9, "wgustdir")? as u16);
+                m.wind_sensor_raw = Some(r.take(3, "wind_sensor")? as u8);
+                m.fwspeed_raw = Some(r.take(7, "fwspeed")? as u8);
+                m.fwgust_raw = Some(r.take(7, "fwgust")? as u8);
+                m.fwdir_raw = Some(r.take(9, "fwdir")? as u16);
+                m.wind_day_raw = Some(r.take(5, "wind_day")? as u8);
+                m.wind_hour_raw = Some(r.take(5, "wind_hour")? as u8);
+                m.wind_minute_raw = Some(r.take(6, "wind_minute")? as u8);
+                m.wind_duration_raw = Some(r.take(8, "wind_duration")? as u8);
+                m.wind_spare = Some(r.take(3, "wind_spare")? as u8);
+            }
+            3 => {
+                m.absolute = Some(r.take(1, "absolute")? == 1);
+                m.level_raw = Some(r.take_signed(16, "level")? as i16);
+                m.level_trend_raw = Some(r.take(2, "level_trend")? as u8);
+                m.datum_raw = Some(r.take(5, "datum")? as u8);
+                m.level_sensor_raw = Some(r.take(3, "level_sensor")? as u8);
+                m.forecast_absolute = Some(r.take(1, "forecast_absolute")? == 1);
+                m.forecast_level_raw = Some(r.take_signed(16, "forecast_level")? as i16);
+                m.level_day_raw = Some(r.take(5, "level_day")? as u8);
+                m.level_hour_raw = Some(r.take(5, "level_hour")? as u8);
+                m.level_minute_raw = Some(r.take(6, "level_minute")? as u8);
+                m.level_duration_raw = Some(r.take(8, "level_duration")? as u8);
+                m.level_spare = Some(r.take(17, "level_spare")? as u32);
+            }
+            4 => {
+                m.cspeed1_raw = Some(r.take(8, "cspeed1")? as u8);
+                m.cdir1_raw = Some(r.take(9, "cdir1")? as u16);
+                m.cdepth1_raw = Some(r.take(9, "cdepth1")? as u16);
+                m.cspeed2_raw = Some(r.take(8, "cspeed2")? as u8);
+                m.cdir2_raw = Some(r.take(9, "cdir2")? as u16);
+                m.cdepth2_raw = Some(r.take(9, "cdepth2")? as u16);
+                m.cspeed3_raw = Some(r.take(8, "cspeed3")? as u8);
+                m.cdir3_raw = Some(r.take(9, "cdir3")? as u16);
+                m.cdepth3_raw = Some(r.take(9, "cdepth3")? as u16);
+                m.current_sensor_raw = Some(r.take(3, "current_sensor")? as u8);
+                m.current_spare = Some(r.take(4, "current_spare")? as u8);
+            }
+            5 => {
+                m.cnorth1_raw = Some(r.take(9, "cnorth1")? as u16);
+                m.ceast1_raw = Some(r.take(9, "ceast1")? as u16);
+                m.cup1_raw = Some(r.take(9, "cup1")? as u16);
+                m.c3depth1 = Some(r.take(9, "c3depth1")? as u16);
+                m.cnorth2_raw = Some(r.take(9, "cnorth2")? as u16);
+                m.ceast2_raw = Some(r.take(9, "ceast2")? as u16);
+                m.cup2_raw = Some(r.take(9, "cup2")? as u16);
+                m.c3depth2 = Some(r.take(9, "c3depth2")? as u16);
+                m.current3d_sensor_raw = Some(r.take(3, "current3d_sensor")? as u8);
+                m.current3d_spare = Some(r.take(10, "current3d_spare")? as u16);
+            }
+            6 => {
+                m.hbearing = Some(r.take(9, "hbearing")? as u16);
+                m.hdistance1 = Some(r.take(9, "hdistance1")? as u16);
+                m.hspeed1_raw = Some(r.take(8, "hspeed1")? as u8);
+                m.hdir1 = Some(r.take(9, "hdir1")? as u16);
+                m.hlevel1 = Some(r.take(9, "hlevel1")? as u16);
+                m.hdistance2 = Some(r.take(9, "hdistance2")? as u16);
+                m.hspeed2_raw = Some(r.take(8, "hspeed2")? as u8);
+                m.hdir2 = Some(r.take(9, "hdir2")? as u16);
+                m.hlevel2 = Some(r.take(9, "hlevel2")? as u16);
+                m.horizontal_sensor_raw = Some(r.take(3, "horizontal_sensor")? as u8);
+                m.horizontal_spare = Some(r.take(3, "horizontal_spare")? as u8);
+            }
+            7 => {
+                m.swell_height_raw = Some(r.take(8, "swell_height")? as u8);
+                m.swell_period_raw = Some(r.take(6, "swell_period")? as u8);
+                m.swell_dir_raw = Some(r.take(9, "swell_dir")? as u16);
+                m.sea_state_raw = Some(r.take(4, "sea_state")? as u8);
+                m.swell_sensor_raw = Some(r.take(3, "swell_sensor")? as u8);
+                m.water_temp_raw = Some(r.take(10, "water_temp")? as u16);
+                m.water_temp_depth_raw = Some(r.take(7, "water_temp_depth")? as u8);
+                m.water_sensor_raw = Some(r.take(3, "water_sensor")? as u8);
+                m.wave_height_raw = Some(r.take(8, "wave_height")? as u8);
+                m.wave_period_raw = Some(r.take(6, "wave_period")? as u8);
+                m.wave_dir_raw = Some(r.take(9, "wave_dir")? as u16);
+                m.wave_sensor_raw = Some(r.take(3, "wave_sensor")? as u8);
+                m.sea_salinity_raw = Some(r.take(9, "sea_salinity")? as u16);
+            }
+            8 => {
+                m.salinity_water_temp_raw = Some(r.take(10, "salinity_water_temp")? as u16);
+                m.conductivity_raw = Some(r.take(10, "conductivity")? as u16);
+                m.water_pressure_raw = Some(r.take(16, "water_pressure")? as u16);
+                m.salinity_raw = Some(r.take(9, "salinity")? as u16);
+                m.salinity_type = Some(r.take(2, "salinity_type")? as u8);
+                m.salinity_sensor_raw = Some(r.take(3, "salinity_sensor")? as u8);
+                m.salinity_spare = Some(r.take(35, "salinity_spare")?);
+            }
+            9 => {
+                m.air_temp_raw = Some(r.take_signed(11, "air_temp")? as i16);
+                m.air_temp_sensor_raw = Some(r.take(3, "air_temp_sensor")? as u8);
+                m.precipitation = Some(r.take(2, "precipitation")? as u8);
+                m.visibility_raw = Some(r.take(8, "visibility")? as u8);
+                m.dew_point_raw = Some(r.take(10, "dew_point")? as u16);
+                m.dew_point_sensor_raw = Some(r.take(3, "dew_point_sensor")? as u8);
+                m.air_pressure_raw = Some(r.take(9, "air_pressure")? as u16);
+                m.pressure_tendency_raw = Some(r.take(2, "pressure_tendency")? as u8);
+                m.pressure_sensor_raw = Some(r.take(3, "pressure_sensor")? as u8);
+                m.weather_salinity_raw = Some(r.take(9, "weather_salinity")? as u16);
+                m.weather_spare = Some(r.take(25, "weather_spare")? as u32);
+            }
+            10 => {
+                m.air_draught_raw = Some(r.take(13, "air_draught")? as u16);
+                m.air_gap_raw = Some(r.take(13, "air_gap")? as u16);
+                m.air_gap_trend_raw = Some(r.take(2, "air_gap_trend")? as u8);
+                m.forecast_air_gap_raw = Some(r.take(13, "forecast_air_gap")? as u16);
+                m.air_gap_day_raw = Some(r.take(5, "air_gap_day")? as u8);
+                m.air_gap_hour_raw = Some(r.take(5, "air_gap_hour")? as u8);
+                m.air_gap_minute_raw = Some(r.take(6, "air_gap_minute")? as u8);
+                m.air_gap_sensor_raw = Some(r.take(3, "air_gap_sensor")? as u8);
+                m.air_gap_spare = Some(r.take(25, "air_gap_spare")? as u32);
+            }
+            11 => {
+                m.wind2_speed_raw = Some(r.take(7, "wind2_speed")? as u8);
+                m.wind2_gust_raw = Some(r.take(7, "wind2_gust")? as u8);
+                m.wind2_dir_raw = Some(r.take(9, "wind2_dir")? as u16);
+                m.averaging_time = Some(r.take(6, "averaging_time")? as u8);
+                m.wind2_sensor_raw = Some(r.take(3, "wind2_sensor")? as u8);
+                m.wind2_fspeed_raw = Some(r.take(7, "wind2_fspeed")? as u8);
+                m.wind2_fgust_raw = Some(r.take(7, "wind2_fgust")? as u8);
+                m.wind2_fdir_raw = Some(r.take(9, "wind2_fdir")? as u16);
+                m.wind2_hour_raw = Some(r.take(5, "wind2_hour")? as u8);
+                m.wind2_minute_raw = Some(r.take(6, "wind2_minute")? as u8);
+                m.wind2_duration_raw = Some(r.take(8, "wind2_duration")? as u8);
+                m.wind2_spare = Some(r.take(11, "wind2_spare")? as u16);
+            }
+            _ => {
+                m.reserved = Some(r.take_bits(85, "reserved")?);
+            }
+        }
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.report_type), 4, "report_type")?;
+            w.put(u64::from(self.day_raw), 5, "day")?;
+            w.put(u64::from(self.hour_raw), 5, "hour")?;
+            w.put(u64::from(self.minute_raw), 6, "minute")?;
+            w.put(u64::from(self.site), 7, "site")?;
+            match u64::from(self.report_type) {
+                0 => {
+                    let Some(v) = self.version else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "version")?;
+                    let Some(v) = self.lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 28, "lon")?;
+                    let Some(v) = self.lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 27, "lat")?;
+                    let Some(v) = self.precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "precision")?;
+                    let Some(v) = self.altitude_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "altitude")?;
+                    let Some(v) = self.owner else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "owner")?;
+                    let Some(v) = self.timeout else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "timeout")?;
+                    let Some(v) = self.location_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "location_spare")?;
+                }
+                1 => {
+                    let Some(v) = self.name else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 84, true, "name")?;
+                    let Some(v) = self.station_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "station_spare")?;
+                }
+                2 => {
+                    let Some(v) = self.wspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wspeed")?;
+                    let Some(v) = self.wgust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wgust")?;
+                    let Some(v) = self.wdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wdir")?;
+                    let Some(v) = self.wgustdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wgustdir")?;
+                    let Some(v) = self.wind_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wind_sensor")?;
+                    let Some(v) = self.fwspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "fwspeed")?;
+                    let Some(v) = self.fwgust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "fwgust")?;
+                    let Some(v) = self.fwdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "fwdir")?;
+                    let Some(v) = self.wind_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wind_day")?;
+                    let Some(v) = self.wind_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wind_hour")?;
+                    let Some(v) = self.wind_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wind_minute")?;
+                    let Some(v) = self.wind_duration_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wind_duration")?;
+                    let Some(v) = self.wind_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wind_spare")?;
+                }
+                3 => {
+                    let Some(v) = self.absolute else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "absolute")?;
+                    let Some(v) = self.level_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 16, "level")?;
+                    let Some(v) = self.level_trend_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "level_trend")?;
+                    let Some(v) = self.datum_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "datum")?;
+                    let Some(v) = self.level_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "level_sensor")?;
+                    let Some(v) = self.forecast_absolute else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "forecast_absolute")?;
+                    let Some(v) = self.forecast_level_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 16, "forecast_level")?;
+                    let Some(v) = self.level_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "level_day")?;
+                    let Some(v) = self.level_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "level_hour")?;
+                    let Some(v) = self.level_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "level_minute")?;
+                    let Some(v) = self.level_duration_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "level_duration")?;
+                    let Some(v) = self.level_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 17, "level_spare")?;
+                }
+                4 => {
+                    let Some(v) = self.cspeed1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed1")?;
+                    let Some(v) = self.cdir1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir1")?;
+                    let Some(v) = self.cdepth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth1")?;
+                    let Some(v) = self.cspeed2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed2")?;
+                    let Some(v) = self.cdir2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir2")?;
+                    let Some(v) = self.cdepth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth2")?;
+                    let Some(v) = self.cspeed3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed3")?;
+                    let Some(v) = self.cdir3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir3")?;
+                    let Some(v) = self.cdepth3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth3")?;
+                    let Some(v) = self.current_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "current_sensor")?;
+                    let Some(v) = self.current_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "current_spare")?;
+                }
+                5 => {
+                    let Some(v) = self.cnorth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cnorth1")?;
+                    let Some(v) = self.ceast1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "ceast1")?;
+                    let Some(v) = self.cup1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cup1")?;
+                    let Some(v) = self.c3depth1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "c3depth1")?;
+                    let Some(v) = self.cnorth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cnorth2")?;
+                    let Some(v) = self.ceast2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "ceast2")?;
+                    let Some(v) = self.cup2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cup2")?;
+                    let Some(v) = self.c3depth2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "c3depth2")?;
+                    let Some(v) = self.current3d_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "current3d_sensor")?;
+                    let Some(v) = self.current3d_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "current3d_spare")?;
+                }
+                6 => {
+                    let Some(v) = self.hbearing else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hbearing")?;
+                    let Some(v) = self.hdistance1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdistance1")?;
+                    let Some(v) = self.hspeed1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "hspeed1")?;
+                    let Some(v) = self.hdir1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdir1")?;
+                    let Some(v) = self.hlevel1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hlevel1")?;
+                    let Some(v) = self.hdistance2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdistance2")?;
+                    let Some(v) = self.hspeed2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "hspeed2")?;
+                    let Some(v) = self.hdir2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdir2")?;
+                    let Some(v) = self.hlevel2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hlevel2")?;
+                    let Some(v) = self.horizontal_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "horizontal_sensor")?;
+                    let Some(v) = self.horizontal_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "horizontal_spare")?;
+                }
+                7 => {
+                    let Some(v) = self.swell_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "swell_height")?;
+                    let Some(v) = self.swell_period_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "swell_period")?;
+                    let Some(v) = self.swell_dir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "swell_dir")?;
+                    let Some(v) = self.sea_state_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "sea_state")?;
+                    let Some(v) = self.swell_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "swell_sensor")?;
+                    let Some(v) = self.water_temp_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "water_temp")?;
+                    let Some(v) = self.water_temp_depth_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "water_temp_depth")?;
+                    let Some(v) = self.water_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "water_sensor")?;
+                    let Some(v) = self.wave_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wave_height")?;
+                    let Some(v) = self.wave_period_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wave_period")?;
+                    let Some(v) = self.wave_dir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wave_dir")?;
+                    let Some(v) = self.wave_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wave_sensor")?;
+                    let Some(v) = self.sea_salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "sea_salinity")?;
+                }
+                8 => {
+                    let Some(v) = self.salinity_water_temp_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "salinity_water_temp")?;
+                    let Some(v) = self.conductivity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "conductivity")?;
+                    let Some(v) = self.water_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 16, "water_pressure")?;
+                    let Some(v) = self.salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "salinity")?;
+                    let Some(v) = self.salinity_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "salinity_type")?;
+                    let Some(v) = self.salinity_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "salinity_sensor")?;
+                    let Some(v) = self.salinity_spare else {
+                        break 'write;
+                    };
+                    w.put(v, 35, "salinity_spare")?;
+                }
+                9 => {
+                    let Some(v) = self.air_temp_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 11, "air_temp")?;
+                    let Some(v) = self.air_temp_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "air_temp_sensor")?;
+                    let Some(v) = self.precipitation else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "precipitation")?;
+                    let Some(v) = self.visibility_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "visibility")?;
+                    let Some(v) = self.dew_point_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "dew_point")?;
+                    let Some(v) = self.dew_point_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "dew_point_sensor")?;
+                    let Some(v) = self.air_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "air_pressure")?;
+                    let Some(v) = self.pressure_tendency_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "pressure_tendency")?;
+                    let Some(v) = self.pressure_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "pressure_sensor")?;
+                    let Some(v) = self.weather_salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "weather_salinity")?;
+                    let Some(v) = self.weather_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 25, "weather_spare")?;
+                }
+                10 => {
+                    let Some(v) = self.air_draught_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "air_draught")?;
+                    let Some(v) = self.air_gap_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "air_gap")?;
+                    let Some(v) = self.air_gap_trend_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "air_gap_trend")?;
+                    let Some(v) = self.forecast_air_gap_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "forecast_air_gap")?;
+                    let Some(v) = self.air_gap_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "air_gap_day")?;
+                    let Some(v) = self.air_gap_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "air_gap_hour")?;
+                    let Some(v) = self.air_gap_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "air_gap_minute")?;
+                    let Some(v) = self.air_gap_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "air_gap_sensor")?;
+                    let Some(v) = self.air_gap_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 25, "air_gap_spare")?;
+                }
+                11 => {
+                    let Some(v) = self.wind2_speed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wind2_speed")?;
+                    let Some(v) = self.wind2_gust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wind2_gust")?;
+                    let Some(v) = self.wind2_dir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wind2_dir")?;
+                    let Some(v) = self.averaging_time else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "averaging_time")?;
+                    let Some(v) = self.wind2_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wind2_sensor")?;
+                    let Some(v) = self.wind2_fspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wind2_fspeed")?;
+                    let Some(v) = self.wind2_fgust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wind2_fgust")?;
+                    let Some(v) = self.wind2_fdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wind2_fdir")?;
+                    let Some(v) = self.wind2_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wind2_hour")?;
+                    let Some(v) = self.wind2_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wind2_minute")?;
+                    let Some(v) = self.wind2_duration_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wind2_duration")?;
+                    let Some(v) = self.wind2_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 11, "wind2_spare")?;
+                }
+                _ => {
+                    let Some(v) = self.reserved else {
+                        break 'write;
+                    };
+                    w.put_fixed(v, 85, false, "reserved")?;
+                }
+            }
+        }
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("report_type", self.report_type)?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.int("site", self.site)?;
+        if let Some(v) = self.version {
+            j.int("version", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.precision {
+            j.int("precision", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.altitude_raw, self.altitude()) {
+            j.reading("altitude", reading, "altitude_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.owner {
+            j.int("owner", v)?;
+        }
+        if let Some(v) = self.timeout {
+            j.int("timeout", v)?;
+        }
+        if let Some(v) = self.location_spare {
+            j.int("location_spare", v)?;
+        }
+        if let Some(v) = self.name {
+            j.text("name", v)?;
+        }
+        if let Some(v) = self.station_spare {
+            j.int("station_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wspeed_raw, self.wspeed()) {
+            j.reading("wspeed", reading, "wspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wgust_raw, self.wgust()) {
+            j.reading("wgust", reading, "wgust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wdir_raw, self.wdir()) {
+            j.reading("wdir", reading, "wdir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wgustdir_raw, self.wgustdir()) {
+            j.reading("wgustdir", reading, "wgustdir_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wind_sensor_raw {
+            j.code("wind_sensor", self.wind_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwspeed_raw, self.fwspeed()) {
+            j.reading("fwspeed", reading, "fwspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwgust_raw, self.fwgust()) {
+            j.reading("fwgust", reading, "fwgust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwdir_raw, self.fwdir()) {
+            j.reading("fwdir", reading, "fwdir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_day_raw, self.wind_day()) {
+            j.reading("wind_day", reading, "wind_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_hour_raw, self.wind_hour()) {
+            j.reading("wind_hour", reading, "wind_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_minute_raw, self.wind_minute()) {
+            j.reading("wind_minute", reading, "wind_minute_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_duration_raw, self.wind_duration()) {
+            j.reading("wind_duration", reading, "wind_duration_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wind_spare {
+            j.int("wind_spare", v)?;
+        }
+        if let Some(v) = self.absolute {
+            j.flag("absolute", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_raw, self.level()) {
+            j.reading("level", reading, "level_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_trend_raw, self.level_trend()) {
+            j.reading("level_trend", reading, "level_trend_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.datum_raw, self.datum()) {
+            j.reading("datum", reading, "datum_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.level_sensor_raw {
+            j.code("level_sensor", self.level_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.forecast_absolute {
+            j.flag("forecast_absolute", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.forecast_level_raw, self.forecast_level()) {
+            j.reading("forecast_level", reading, "forecast_level_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_day_raw, self.level_day()) {
+            j.reading("level_day", reading, "level_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_hour_raw, self.level_hour()) {
+            j.reading("level_hour", reading, "level_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_minute_raw, self.level_minute()) {
+            j.reading("level_minute", reading, "level_minute_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_duration_raw, self.level_duration()) {
+            j.reading("level_duration", reading, "level_duration_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.level_spare {
+            j.int("level_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed1_raw, self.cspeed1()) {
+            j.reading("cspeed1", reading, "cspeed1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir1_raw, self.cdir1()) {
+            j.reading("cdir1", reading, "cdir1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth1_raw, self.cdepth1()) {
+            j.reading("cdepth1", reading, "cdepth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed2_raw, self.cspeed2()) {
+            j.reading("cspeed2", reading, "cspeed2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir2_raw, self.cdir2()) {
+            j.reading("cdir2", reading, "cdir2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth2_raw, self.cdepth2()) {
+            j.reading("cdepth2", reading, "cdepth2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed3_raw, self.cspeed3()) {
+            j.reading("cspeed3", reading, "cspeed3_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir3_raw, self.cdir3()) {
+            j.reading("cdir3", reading, "cdir3_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth3_raw, self.cdepth3()) {
+            j.reading("cdepth3", reading, "cdepth3_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.current_sensor_raw {
+            j.code("current_sensor", self.current_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.current_spare {
+            j.int("current_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.cnorth1_raw, self.cnorth1()) {
+            j.reading("cnorth1", reading, "cnorth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.ceast1_raw, self.ceast1()) {
+            j.reading("ceast1", reading, "ceast1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cup1_raw, self.cup1()) {
+            j.reading("cup1", reading, "cup1_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.c3depth1 {
+            j.int("c3depth1", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.cnorth2_raw, self.cnorth2()) {
+            j.reading("cnorth2", reading, "cnorth2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.ceast2_raw, self.ceast2()) {
+            j.reading("ceast2", reading, "ceast2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cup2_raw, self.cup2()) {
+            j.reading("cup2", reading, "cup2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.c3depth2 {
+            j.int("c3depth2", v)?;
+        }
+        if let Some(v) = self.current3d_sensor_raw {
+            j.code("current3d_sensor", self.current3d_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.current3d_spare {
+            j.int("current3d_spare", v)?;
+        }
+        if let Some(v) = self.hbearing {
+            j.int("hbearing", v)?;
+        }
+        if let Some(v) = self.hdistance1 {
+            j.int("hdistance1", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.hspeed1_raw, self.hspeed1()) {
+            j.reading("hspeed1", reading, "hspeed1_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.hdir1 {
+            j.int("hdir1", v)?;
+        }
+        if let Some(v) = self.hlevel1 {
+            j.int("hlevel1", v)?;
+        }
+        if let Some(v) = self.hdistance2 {
+            j.int("hdistance2", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.hspeed2_raw, self.hspeed2()) {
+            j.reading("hspeed2", reading, "hspeed2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.hdir2 {
+            j.int("hdir2", v)?;
+        }
+        if let Some(v) = self.hlevel2 {
+            j.int("hlevel2", v)?;
+        }
+        if let Some(v) = self.horizontal_sensor_raw {
+            j.code("horizontal_sensor", self.horizontal_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.horizontal_spare {
+            j.int("horizontal_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_height_raw, self.swell_height()) {
+            j.reading("swell_height", reading, "swell_height_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_period_raw, self.swell_period()) {
+            j.reading("swell_period", reading, "swell_period_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_dir_raw, self.swell_dir()) {
+            j.reading("swell_dir", reading, "swell_dir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sea_state_raw, self.sea_state()) {
+            j.reading("sea_state", reading, "sea_state_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.swell_sensor_raw {
+            j.code("swell_sensor", self.swell_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_temp_raw, self.water_temp()) {
+            j.reading("water_temp", reading, "water_temp_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_temp_depth_raw, self.water_temp_depth()) {
+            j.reading("water_temp_depth", reading, "water_temp_depth_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.water_sensor_raw {
+            j.code("water_sensor", self.water_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_height_raw, self.wave_height()) {
+            j.reading("wave_height", reading, "wave_height_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_period_raw, self.wave_period()) {
+            j.reading("wave_period", reading, "wave_period_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_dir_raw, self.wave_dir()) {
+            j.reading("wave_dir", reading, "wave_dir_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wave_sensor_raw {
+            j.code("wave_sensor", self.wave_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sea_salinity_raw, self.sea_salinity()) {
+            j.reading("sea_salinity", reading, "sea_salinity_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.salinity_water_temp_raw, self.salinity_water_temp()) {
+            j.reading("salinity_water_temp", reading, "salinity_water_temp_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.conductivity_raw, self.conductivity()) {
+            j.reading("conductivity", reading, "conductivity_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_pressure_raw, self.water_pressure()) {
+            j.reading("water_pressure", reading, "water_pressure_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.salinity_raw, self.salinity()) {
+            j.reading("salinity", reading, "salinity_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.salinity_type {
+            j.int("salinity_type", v)?;
+        }
+        if let Some(v) = self.salinity_sensor_raw {
+            j.code("salinity_sensor", self.salinity_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.salinity_spare {
+            j.int("salinity_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_temp_raw, self.air_temp()) {
+            j.reading("air_temp", reading, "air_temp_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.air_temp_sensor_raw {
+            j.code("air_temp_sensor", self.air_temp_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.precipitation {
+            j.int("precipitation", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.visibility_raw, self.visibility()) {
+            j.reading("visibility", reading, "visibility_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.dew_point_raw, self.dew_point()) {
+            j.reading("dew_point", reading, "dew_point_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.dew_point_sensor_raw {
+            j.code("dew_point_sensor", self.dew_point_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_pressure_raw, self.air_pressure()) {
+            j.reading("air_pressure", reading, "air_pressure_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.pressure_tendency_raw, self.pressure_tendency()) {
+            j.reading("pressure_tendency", reading, "pressure_tendency_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.pressure_sensor_raw {
+            j.code("pressure_sensor", self.pressure_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.weather_salinity_raw, self.weather_salinity()) {
+            j.reading("weather_salinity", reading, "weather_salinity_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.weather_spare {
+            j.int("weather_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_draught_raw, self.air_draught()) {
+            j.reading("air_draught", reading, "air_draught_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_raw, self.air_gap()) {
+            j.reading("air_gap", reading, "air_gap_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_trend_raw, self.air_gap_trend()) {
+            j.reading("air_gap_trend", reading, "air_gap_trend_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.forecast_air_gap_raw, self.forecast_air_gap()) {
+            j.reading("forecast_air_gap", reading, "forecast_air_gap_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_day_raw, self.air_gap_day()) {
+            j.reading("air_gap_day", reading, "air_gap_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_hour_raw, self.air_gap_hour()) {
+            j.reading("air_gap_hour", reading, "air_gap_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_minute_raw, self.air_gap_minute()) {
+            j.reading("air_gap_minute", reading, "air_gap_minute_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.air_gap_sensor_raw {
+            j.code("air_gap_sensor", self.air_gap_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.air_gap_spare {
+            j.int("air_gap_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_speed_raw, self.wind2_speed()) {
+            j.reading("wind2_speed", reading, "wind2_speed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_gust_raw, self.wind2_gust()) {
+            j.reading("wind2_gust", reading, "wind2_gust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_dir_raw, self.wind2_dir()) {
+            j.reading("wind2_dir", reading, "wind2_dir_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.averaging_time {
+            j.int("averaging_time", v)?;
+        }
+        if let Some(v) = self.wind2_sensor_raw {
+            j.code("wind2_sensor", self.wind2_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_fspeed_raw, self.wind2_fspeed()) {
+            j.reading("wind2_fspeed", reading, "wind2_fspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_fgust_raw, self.wind2_fgust()) {
+            j.reading("wind2_fgust", reading, "wind2_fgust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_fdir_raw, self.wind2_fdir()) {
+            j.reading("wind2_fdir", reading, "wind2_fdir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_hour_raw, self.wind2_hour()) {
+            j.reading("wind2_hour", reading, "wind2_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_minute_raw, self.wind2_minute()) {
+            j.reading("wind2_minute", reading, "wind2_minute_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind2_duration_raw, self.wind2_duration()) {
+            j.reading("wind2_duration", reading, "wind2_duration_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wind2_spare {
+            j.int("wind2_spare", v)?;
+        }
+        if let Some(v) = self.reserved {
+            j.text("reserved", v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Environmental (USCG): AIS application DAC 367 FI 33 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct UscgEnvironmental<'a> {
+    /// Sensor reports: 1 to 8 entries.
+    pub reports: [Option<UscgEnvironmentalReport<'a>>; 8],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> UscgEnvironmental<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { ..Self::default() };
+        let count = r.entries(1, 8, 112, 0, "reports")?;
+        for slot in m.reports.iter_mut().take(count) {
+            *slot = Some(UscgEnvironmentalReport::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        for entry in self.reports.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        {
+            let out = j.key("reports")?;
+            out.write_char('[')?;
+            for (i, entry) in self.reports.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of VtsTargetsTarget.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtsTargetsTarget<'a> {
+    /// Type of target identifier.
+    pub idtype: u8,
+    /// Target MMSI.
+    pub mmsi: Option<u64>,
+    /// Target IMO number.
+    pub imo: Option<u64>,
+    /// Target call sign.
+    pub callsign: Option<ais::SixBitText<'a>>,
+    /// Other target identifier.
+    pub other: Option<ais::SixBitText<'a>>,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Course over ground [degrees].
+    pub course_raw: Option<u16>,
+    /// Time stamp (UTC second).
+    pub second_raw: Option<u8>,
+    /// Speed over ground [knots].
+    pub speed_raw: Option<u8>,
+}
+
+impl<'a> VtsTargetsTarget<'a> {
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Course over ground [degrees], or its special value.
+    pub fn course(&self) -> Option<ais::Reading<i64>> {
+        self.course_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Time stamp (UTC second), or its special value.
+    pub fn second(&self) -> Option<ais::Reading<i64>> {
+        self.second_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Speed over ground [knots], or its special value.
+    pub fn speed(&self) -> Option<ais::Reading<i64>> {
+        self.speed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { idtype: r.take(2, "idtype")? as u8, ..Self::default() };
+        match u64::from(m.idtype) {
+            0 => {
+                m.mmsi = Some(r.take(42, "mmsi")?);
+            }
+            1 => {
+                m.imo = Some(r.take(42, "imo")?);
+            }
+            2 => {
+                m.callsign = Some(r.take_text(7, "callsign")?);
+            }
+            _ => {
+                m.other = Some(r.take_text(7, "other")?);
+            }
+        }
+        m.spare = Some(r.take(4, "spare")? as u8);
+        m.lat_raw = Some(r.take_signed(24, "lat")? as i32);
+        m.lon_raw = Some(r.take_signed(25, "lon")? as i32);
+        m.course_raw = Some(r.take(9, "course")? as u16);
+        m.second_raw = Some(r.take(6, "second")? as u8);
+        m.speed_raw = Some(r.take(8, "speed")? as u8);
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.idtype), 2, "idtype")?;
+            match u64::from(self.idtype) {
+                0 => {
+                    let Some(v) = self.mmsi else {
+                        break 'write;
+                    };
+                    w.put(v, 42, "mmsi")?;
+                }
+                1 => {
+                    let Some(v) = self.imo else {
+                        break 'write;
+                    };
+                    w.put(v, 42, "imo")?;
+                }
+                2 => {
+                    let Some(v) = self.callsign else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 42, true, "callsign")?;
+                }
+                _ => {
+                    let Some(v) = self.other else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 42, true, "other")?;
+                }
+            }
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 4, "spare")?;
+            let Some(v) = self.lat_raw else {
+                break 'write;
+            };
+            w.put_signed(i64::from(v), 24, "lat")?;
+            let Some(v) = self.lon_raw else {
+                break 'write;
+            };
+            w.put_signed(i64::from(v), 25, "lon")?;
+            let Some(v) = self.course_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 9, "course")?;
+            let Some(v) = self.second_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 6, "second")?;
+            let Some(v) = self.speed_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 8, "speed")?;
+        }
         Ok(())
     }
     /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         j.int("idtype", self.idtype)?;
-        j.int("id", self.id)?;
-        j.int("spare", self.spare)?;
-        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
-        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
-        j.reading("course", self.course(), "course_raw", i64::from(self.course_raw))?;
-        j.reading("second", self.second(), "second_raw", i64::from(self.second_raw))?;
-        j.reading("speed", self.speed(), "speed_raw", i64::from(self.speed_raw))?;
+        if let Some(v) = self.mmsi {
+            j.int("mmsi", v)?;
+        }
+        if let Some(v) = self.imo {
+            j.int("imo", v)?;
+        }
+        if let Some(v) = self.callsign {
+            j.text("callsign", v)?;
+        }
+        if let Some(v) = self.other {
+            j.text("other", v)?;
+        }
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.course_raw, self.course()) {
+            j.reading("course", reading, "course_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.second_raw, self.second()) {
+            j.reading("second", reading, "second_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.speed_raw, self.speed()) {
+            j.reading("speed", reading, "speed_raw", i64::from(v))?;
+        }
         Ok(())
     }
 }
@@ -7656,7 +11550,7 @@ impl VtsTargetsTarget {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct VtsTargets<'a> {
     /// Targets: 1 to 7 entries.
-    pub targets: [Option<VtsTargetsTarget>; 7],
+    pub targets: [Option<VtsTargetsTarget<'a>>; 7],
     /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
     pub trailing: ais::Bits<'a>,
 }
@@ -7702,87 +11596,167 @@ impl<'a> VtsTargets<'a> {
 
 /// One entry of VtsTargetsImo289Target.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct VtsTargetsImo289Target {
+pub struct VtsTargetsImo289Target<'a> {
     /// Type of target identifier.
     pub idtype: u8,
-    /// Target identifier.
-    pub id: u64,
+    /// Target MMSI.
+    pub mmsi: Option<u64>,
+    /// Target IMO number.
+    pub imo: Option<u64>,
+    /// Target call sign.
+    pub callsign: Option<ais::SixBitText<'a>>,
+    /// Other target identifier.
+    pub other: Option<ais::SixBitText<'a>>,
     /// Spare.
-    pub spare: u8,
+    pub spare: Option<u8>,
     /// Latitude [degrees].
-    pub lat_raw: i32,
+    pub lat_raw: Option<i32>,
     /// Longitude [degrees].
-    pub lon_raw: i32,
+    pub lon_raw: Option<i32>,
     /// Course over ground [degrees].
-    pub course_raw: u16,
+    pub course_raw: Option<u16>,
     /// Time stamp (UTC second).
-    pub second_raw: u8,
+    pub second_raw: Option<u8>,
     /// Speed over ground [knots].
-    pub speed_raw: u8,
+    pub speed_raw: Option<u8>,
 }
 
-impl VtsTargetsImo289Target {
+impl<'a> VtsTargetsImo289Target<'a> {
     /// Latitude [degrees], or its special value.
-    pub fn lat(&self) -> ais::Reading<f64> {
-        let raw = self.lat_raw;
-        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
     }
     /// Longitude [degrees], or its special value.
-    pub fn lon(&self) -> ais::Reading<f64> {
-        let raw = self.lon_raw;
-        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
     }
     /// Course over ground [degrees], or its special value.
-    pub fn course(&self) -> ais::Reading<i64> {
-        let raw = self.course_raw;
-        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    pub fn course(&self) -> Option<ais::Reading<i64>> {
+        self.course_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
     }
     /// Time stamp (UTC second), or its special value.
-    pub fn second(&self) -> ais::Reading<i64> {
-        let raw = self.second_raw;
-        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    pub fn second(&self) -> Option<ais::Reading<i64>> {
+        self.second_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
     }
     /// Speed over ground [knots], or its special value.
-    pub fn speed(&self) -> ais::Reading<i64> {
-        let raw = self.speed_raw;
-        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    pub fn speed(&self) -> Option<ais::Reading<i64>> {
+        self.speed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
     }
     /// Reads the layout's fields from `r`.
-    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
-        let m = Self {
-            idtype: r.take(2, "idtype")? as u8,
-            id: r.take(42, "id")?,
-            spare: r.take(4, "spare")? as u8,
-            lat_raw: r.take_signed(24, "lat")? as i32,
-            lon_raw: r.take_signed(25, "lon")? as i32,
-            course_raw: r.take(9, "course")? as u16,
-            second_raw: r.take(6, "second")? as u8,
-            speed_raw: r.take(8, "speed")? as u8,
-        };
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { idtype: r.take(2, "idtype")? as u8, ..Self::default() };
+        match u64::from(m.idtype) {
+            0 => {
+                m.mmsi = Some(r.take(42, "mmsi")?);
+            }
+            1 => {
+                m.imo = Some(r.take(42, "imo")?);
+            }
+            2 => {
+                m.callsign = Some(r.take_text(7, "callsign")?);
+            }
+            _ => {
+                m.other = Some(r.take_text(7, "other")?);
+            }
+        }
+        m.spare = Some(r.take(4, "spare")? as u8);
+        m.lat_raw = Some(r.take_signed(24, "lat")? as i32);
+        m.lon_raw = Some(r.take_signed(25, "lon")? as i32);
+        m.course_raw = Some(r.take(9, "course")? as u16);
+        m.second_raw = Some(r.take(6, "second")? as u8);
+        m.speed_raw = Some(r.take(8, "speed")? as u8);
         Ok(m)
     }
     /// Writes the layout's fields to `w`.
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
-        w.put(u64::from(self.idtype), 2, "idtype")?;
-        w.put(self.id, 42, "id")?;
-        w.put(u64::from(self.spare), 4, "spare")?;
-        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
-        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
-        w.put(u64::from(self.course_raw), 9, "course")?;
-        w.put(u64::from(self.second_raw), 6, "second")?;
-        w.put(u64::from(self.speed_raw), 8, "speed")?;
+        'write: {
+            w.put(u64::from(self.idtype), 2, "idtype")?;
+            match u64::from(self.idtype) {
+                0 => {
+                    let Some(v) = self.mmsi else {
+                        break 'write;
+                    };
+                    w.put(v, 42, "mmsi")?;
+                }
+                1 => {
+                    let Some(v) = self.imo else {
+                        break 'write;
+                    };
+                    w.put(v, 42, "imo")?;
+                }
+                2 => {
+                    let Some(v) = self.callsign else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 42, true, "callsign")?;
+                }
+                _ => {
+                    let Some(v) = self.other else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 42, true, "other")?;
+                }
+            }
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 4, "spare")?;
+            let Some(v) = self.lat_raw else {
+                break 'write;
+            };
+            w.put_signed(i64::from(v), 24, "lat")?;
+            let Some(v) = self.lon_raw else {
+                break 'write;
+            };
+            w.put_signed(i64::from(v), 25, "lon")?;
+            let Some(v) = self.course_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 9, "course")?;
+            let Some(v) = self.second_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 6, "second")?;
+            let Some(v) = self.speed_raw else {
+                break 'write;
+            };
+            w.put(u64::from(v), 8, "speed")?;
+        }
         Ok(())
     }
     /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         j.int("idtype", self.idtype)?;
-        j.int("id", self.id)?;
-        j.int("spare", self.spare)?;
-        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
-        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
-        j.reading("course", self.course(), "course_raw", i64::from(self.course_raw))?;
-        j.reading("second", self.second(), "second_raw", i64::from(self.second_raw))?;
-        j.reading("speed", self.speed(), "speed_raw", i64::from(self.speed_raw))?;
+        if let Some(v) = self.mmsi {
+            j.int("mmsi", v)?;
+        }
+        if let Some(v) = self.imo {
+            j.int("imo", v)?;
+        }
+        if let Some(v) = self.callsign {
+            j.text("callsign", v)?;
+        }
+        if let Some(v) = self.other {
+            j.text("other", v)?;
+        }
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.course_raw, self.course()) {
+            j.reading("course", reading, "course_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.second_raw, self.second()) {
+            j.reading("second", reading, "second_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.speed_raw, self.speed()) {
+            j.reading("speed", reading, "speed_raw", i64::from(v))?;
+        }
         Ok(())
     }
 }
@@ -7791,7 +11765,7 @@ impl VtsTargetsImo289Target {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct VtsTargetsImo289<'a> {
     /// Targets: 1 to 4 entries.
-    pub targets: [Option<VtsTargetsImo289Target>; 4],
+    pub targets: [Option<VtsTargetsImo289Target<'a>>; 4],
     /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
     pub trailing: ais::Bits<'a>,
 }
@@ -7839,18 +11813,28 @@ impl<'a> VtsTargetsImo289<'a> {
 #[derive(Clone, Copy, Debug)]
 #[allow(clippy::large_enum_variant)] // no heap: an area notice holds its ten sub-areas in place
 pub enum Application<'a> {
-    /// DAC 1 FI 22.
+    /// DAC 1 FI 15.
+    AirDraught(AirDraught<'a>),
+    /// DAC 1 FI 22 or DAC 1 FI 23.
     AreaNotice(AreaNotice<'a>),
     /// DAC 235 or 250 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
+    /// DAC 1 FI 20.
+    BerthingData(BerthingData<'a>),
     /// DAC 1 FI 18.
     ClearanceTime(ClearanceTime<'a>),
+    /// DAC 1 FI 25.
+    DangerousCargo(DangerousCargo<'a>),
     /// DAC 1 FI 12.
     DangerousCargoImo236(DangerousCargoImo236<'a>),
     /// DAC 1 FI 26.
     Environmental(Environmental<'a>),
+    /// DAC 1 FI 13.
+    FairwayClosed(FairwayClosed<'a>),
     /// DAC 1 FI 2.
     FunctionInterrogation(FunctionInterrogation<'a>),
+    /// DAC 200 FI 23.
+    InlandEmmaWarning(InlandEmmaWarning<'a>),
     /// DAC 200 FI 21.
     InlandEta(InlandEta<'a>),
     /// DAC 200 FI 55.
@@ -7869,6 +11853,12 @@ pub enum Application<'a> {
     MeteoHydroImo236(MeteoHydroImo236<'a>),
     /// DAC 1 FI 40.
     PersonsOnBoard(PersonsOnBoard<'a>),
+    /// DAC 1 FI 27 or DAC 1 FI 28.
+    RouteInformation(RouteInformation<'a>),
+    /// DAC 1 FI 24.
+    ShipStaticVoyage(ShipStaticVoyage<'a>),
+    /// DAC 1 FI 21.
+    ShipWeather(ShipWeather<'a>),
     /// DAC 1 FI 30.
     TextAddressed(TextAddressed<'a>),
     /// DAC 1 FI 29.
@@ -7877,6 +11867,10 @@ pub enum Application<'a> {
     TidalWindow(TidalWindow<'a>),
     /// DAC 1 FI 14.
     TidalWindowImo236(TidalWindowImo236<'a>),
+    /// DAC 1 FI 19.
+    TrafficSignal(TrafficSignal<'a>),
+    /// DAC 367 FI 33.
+    UscgEnvironmental(UscgEnvironmental<'a>),
     /// DAC 1 FI 16.
     VtsTargets(VtsTargets<'a>),
     /// DAC 1 FI 17.
@@ -7888,12 +11882,17 @@ impl<'a> Application<'a> {
     /// `message_type`, None when the spec describes none or its layout does not read the bits.
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
-            (1, 22, 8) => AreaNotice::read(&mut data.reader()).ok().map(Application::AreaNotice),
+            (1, 15, 8) => AirDraught::read(&mut data.reader()).ok().map(Application::AirDraught),
+            (1, 22, 8) | (1, 23, 6) => AreaNotice::read(&mut data.reader()).ok().map(Application::AreaNotice),
             (235 | 250, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (1, 20, 6) => BerthingData::read(&mut data.reader()).ok().map(Application::BerthingData),
             (1, 18, 6) => ClearanceTime::read(&mut data.reader()).ok().map(Application::ClearanceTime),
+            (1, 25, 6) => DangerousCargo::read(&mut data.reader()).ok().map(Application::DangerousCargo),
             (1, 12, 6) => DangerousCargoImo236::read(&mut data.reader()).ok().map(Application::DangerousCargoImo236),
             (1, 26, 8) => Environmental::read(&mut data.reader()).ok().map(Application::Environmental),
+            (1, 13, 8) => FairwayClosed::read(&mut data.reader()).ok().map(Application::FairwayClosed),
             (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
+            (200, 23, 8) => InlandEmmaWarning::read(&mut data.reader()).ok().map(Application::InlandEmmaWarning),
             (200, 21, 6) => InlandEta::read(&mut data.reader()).ok().map(Application::InlandEta),
             (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
             (200, 22, 6) => InlandRta::read(&mut data.reader()).ok().map(Application::InlandRta),
@@ -7903,10 +11902,17 @@ impl<'a> Application<'a> {
             (1, 31, 8) => MeteoHydro::read(&mut data.reader()).ok().map(Application::MeteoHydro),
             (1, 11, 8) => MeteoHydroImo236::read(&mut data.reader()).ok().map(Application::MeteoHydroImo236),
             (1, 40, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
+            (1, 27, 8) | (1, 28, 6) => {
+                RouteInformation::read(&mut data.reader()).ok().map(Application::RouteInformation)
+            }
+            (1, 24, 8) => ShipStaticVoyage::read(&mut data.reader()).ok().map(Application::ShipStaticVoyage),
+            (1, 21, 8) => ShipWeather::read(&mut data.reader()).ok().map(Application::ShipWeather),
             (1, 30, 6) => TextAddressed::read(&mut data.reader()).ok().map(Application::TextAddressed),
             (1, 29, 8) => TextBroadcast::read(&mut data.reader()).ok().map(Application::TextBroadcast),
             (1, 32, 6) => TidalWindow::read(&mut data.reader()).ok().map(Application::TidalWindow),
             (1, 14, 6) => TidalWindowImo236::read(&mut data.reader()).ok().map(Application::TidalWindowImo236),
+            (1, 19, 8) => TrafficSignal::read(&mut data.reader()).ok().map(Application::TrafficSignal),
+            (367, 33, 8) => UscgEnvironmental::read(&mut data.reader()).ok().map(Application::UscgEnvironmental),
             (1, 16, 8) => VtsTargets::read(&mut data.reader()).ok().map(Application::VtsTargets),
             (1, 17, 8) => VtsTargetsImo289::read(&mut data.reader()).ok().map(Application::VtsTargetsImo289),
             _ => None,
@@ -7916,12 +11922,17 @@ impl<'a> Application<'a> {
     /// Writes its bits (those of the data of its message).
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
         match self {
+            Application::AirDraught(app) => app.write(w),
             Application::AreaNotice(app) => app.write(w),
             Application::AtonMonitoring(app) => app.write(w),
+            Application::BerthingData(app) => app.write(w),
             Application::ClearanceTime(app) => app.write(w),
+            Application::DangerousCargo(app) => app.write(w),
             Application::DangerousCargoImo236(app) => app.write(w),
             Application::Environmental(app) => app.write(w),
+            Application::FairwayClosed(app) => app.write(w),
             Application::FunctionInterrogation(app) => app.write(w),
+            Application::InlandEmmaWarning(app) => app.write(w),
             Application::InlandEta(app) => app.write(w),
             Application::InlandPersonsOnBoard(app) => app.write(w),
             Application::InlandRta(app) => app.write(w),
@@ -7931,10 +11942,15 @@ impl<'a> Application<'a> {
             Application::MeteoHydro(app) => app.write(w),
             Application::MeteoHydroImo236(app) => app.write(w),
             Application::PersonsOnBoard(app) => app.write(w),
+            Application::RouteInformation(app) => app.write(w),
+            Application::ShipStaticVoyage(app) => app.write(w),
+            Application::ShipWeather(app) => app.write(w),
             Application::TextAddressed(app) => app.write(w),
             Application::TextBroadcast(app) => app.write(w),
             Application::TidalWindow(app) => app.write(w),
             Application::TidalWindowImo236(app) => app.write(w),
+            Application::TrafficSignal(app) => app.write(w),
+            Application::UscgEnvironmental(app) => app.write(w),
             Application::VtsTargets(app) => app.write(w),
             Application::VtsTargetsImo289(app) => app.write(w),
         }
@@ -7943,12 +11959,17 @@ impl<'a> Application<'a> {
     /// The members of its decoded JSON.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         match self {
+            Application::AirDraught(app) => app.json_members(j),
             Application::AreaNotice(app) => app.json_members(j),
             Application::AtonMonitoring(app) => app.json_members(j),
+            Application::BerthingData(app) => app.json_members(j),
             Application::ClearanceTime(app) => app.json_members(j),
+            Application::DangerousCargo(app) => app.json_members(j),
             Application::DangerousCargoImo236(app) => app.json_members(j),
             Application::Environmental(app) => app.json_members(j),
+            Application::FairwayClosed(app) => app.json_members(j),
             Application::FunctionInterrogation(app) => app.json_members(j),
+            Application::InlandEmmaWarning(app) => app.json_members(j),
             Application::InlandEta(app) => app.json_members(j),
             Application::InlandPersonsOnBoard(app) => app.json_members(j),
             Application::InlandRta(app) => app.json_members(j),
@@ -7958,10 +11979,15 @@ impl<'a> Application<'a> {
             Application::MeteoHydro(app) => app.json_members(j),
             Application::MeteoHydroImo236(app) => app.json_members(j),
             Application::PersonsOnBoard(app) => app.json_members(j),
+            Application::RouteInformation(app) => app.json_members(j),
+            Application::ShipStaticVoyage(app) => app.json_members(j),
+            Application::ShipWeather(app) => app.json_members(j),
             Application::TextAddressed(app) => app.json_members(j),
             Application::TextBroadcast(app) => app.json_members(j),
             Application::TidalWindow(app) => app.json_members(j),
             Application::TidalWindowImo236(app) => app.json_members(j),
+            Application::TrafficSignal(app) => app.json_members(j),
+            Application::UscgEnvironmental(app) => app.json_members(j),
             Application::VtsTargets(app) => app.json_members(j),
             Application::VtsTargetsImo289(app) => app.json_members(j),
         }

@@ -1059,25 +1059,25 @@ impl<'a> GlonassBiases<'a> {
             l2p_mask: r.take(1, "l2p_mask")? == 1,
             ..Self::default()
         };
-        match r.peek(28, 1, "l1ca_mask")? {
+        match u64::from(m.l1ca_mask) {
             1 => {
                 m.l1ca_bias_raw = Some(r.take_signed(16, "l1ca_bias")? as i16);
             }
             _ => {}
         }
-        match r.peek(29, 1, "l1p_mask")? {
+        match u64::from(m.l1p_mask) {
             1 => {
                 m.l1p_bias_raw = Some(r.take_signed(16, "l1p_bias")? as i16);
             }
             _ => {}
         }
-        match r.peek(30, 1, "l2ca_mask")? {
+        match u64::from(m.l2ca_mask) {
             1 => {
                 m.l2ca_bias_raw = Some(r.take_signed(16, "l2ca_bias")? as i16);
             }
             _ => {}
         }
-        match r.peek(31, 1, "l2p_mask")? {
+        match u64::from(m.l2p_mask) {
             1 => {
                 m.l2p_bias_raw = Some(r.take_signed(16, "l2p_bias")? as i16);
             }
@@ -3299,7 +3299,7 @@ impl<'a> Msm1<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1081 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -3573,7 +3573,7 @@ impl<'a> Msm2<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1082 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -3874,7 +3874,7 @@ impl<'a> Msm3<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1083 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -4198,7 +4198,7 @@ impl<'a> Msm4<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1084 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -4559,7 +4559,7 @@ impl<'a> Msm5<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1085 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -4918,7 +4918,7 @@ impl<'a> Msm6<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1086 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -5284,7 +5284,7 @@ impl<'a> Msm7<'a> {
             station_id: r.take(12, "station_id")? as u16,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1087 => {
                 m.glonass_day = Some(r.take(3, "glonass_day")? as u8);
                 m.glonass_epoch_time = Some(r.take(27, "glonass_epoch_time")? as u32);
@@ -5918,7 +5918,7 @@ impl<'a> StationArp<'a> {
             ecef_z_raw: r.take_signed(38, "ecef_z")?,
             ..Self::default()
         };
-        match r.peek(0, 12, "message_number")? {
+        match u64::from(m.message_number) {
             1006 => {
                 m.antenna_height_raw = Some(r.take(16, "antenna_height")? as u16);
             }

@@ -11,18 +11,24 @@
 #   spec/ais/messages/position_report.yaml, spec/ais/messages/safety_broadcast.yaml,
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
-#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/area_notice.yaml,
-#   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/clearance_time.yaml,
-#   spec/ais/applications/dangerous_cargo_imo236.yaml, spec/ais/applications/environmental.yaml,
-#   spec/ais/applications/function_interrogation.yaml, spec/ais/applications/inland_eta.yaml,
+#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/air_draught.yaml,
+#   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+#   spec/ais/applications/berthing_data.yaml, spec/ais/applications/clearance_time.yaml,
+#   spec/ais/applications/dangerous_cargo.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
+#   spec/ais/applications/environmental.yaml, spec/ais/applications/fairway_closed.yaml,
+#   spec/ais/applications/function_interrogation.yaml,
+#   spec/ais/applications/inland_emma_warning.yaml, spec/ais/applications/inland_eta.yaml,
 #   spec/ais/applications/inland_persons_on_board.yaml, spec/ais/applications/inland_rta.yaml,
 #   spec/ais/applications/inland_signal_status.yaml,
 #   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
 #   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
-#   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
-#   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
-#   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-#   spec/ais/applications/vts_targets_imo289.yaml (digest 460004818e528f15)
+#   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/route_information.yaml,
+#   spec/ais/applications/ship_static_voyage.yaml, spec/ais/applications/ship_weather.yaml,
+#   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml,
+#   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
+#   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
+#   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
+#   (digest b375cf8302553a12)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -53,12 +59,17 @@ from .single_slot_binary import SingleSlotBinary as SingleSlotBinary
 from .static_data_report import StaticDataReport as StaticDataReport
 from .static_voyage_data import StaticVoyageData as StaticVoyageData
 from .utc_inquiry import UtcInquiry as UtcInquiry
+from .air_draught import AirDraught as AirDraught
 from .area_notice import AreaNotice as AreaNotice
 from .aton_monitoring import AtonMonitoring as AtonMonitoring
+from .berthing_data import BerthingData as BerthingData
 from .clearance_time import ClearanceTime as ClearanceTime
+from .dangerous_cargo import DangerousCargo as DangerousCargo
 from .dangerous_cargo_imo236 import DangerousCargoImo236 as DangerousCargoImo236
 from .environmental import Environmental as Environmental
+from .fairway_closed import FairwayClosed as FairwayClosed
 from .function_interrogation import FunctionInterrogation as FunctionInterrogation
+from .inland_emma_warning import InlandEmmaWarning as InlandEmmaWarning
 from .inland_eta import InlandEta as InlandEta
 from .inland_persons_on_board import InlandPersonsOnBoard as InlandPersonsOnBoard
 from .inland_rta import InlandRta as InlandRta
@@ -68,10 +79,15 @@ from .inland_water_level import InlandWaterLevel as InlandWaterLevel
 from .meteo_hydro import MeteoHydro as MeteoHydro
 from .meteo_hydro_imo236 import MeteoHydroImo236 as MeteoHydroImo236
 from .persons_on_board import PersonsOnBoard as PersonsOnBoard
+from .route_information import RouteInformation as RouteInformation
+from .ship_static_voyage import ShipStaticVoyage as ShipStaticVoyage
+from .ship_weather import ShipWeather as ShipWeather
 from .text_addressed import TextAddressed as TextAddressed
 from .text_broadcast import TextBroadcast as TextBroadcast
 from .tidal_window import TidalWindow as TidalWindow
 from .tidal_window_imo236 import TidalWindowImo236 as TidalWindowImo236
+from .traffic_signal import TrafficSignal as TrafficSignal
+from .uscg_environmental import UscgEnvironmental as UscgEnvironmental
 from .vts_targets import VtsTargets as VtsTargets
 from .vts_targets_imo289 import VtsTargetsImo289 as VtsTargetsImo289
 
@@ -107,13 +123,19 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 """The class of each message type the spec describes."""
 
 APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+    (1, 15): AirDraught,
     (1, 22): AreaNotice,
+    (1, 23): AreaNotice,
     (235, 10): AtonMonitoring,
     (250, 10): AtonMonitoring,
+    (1, 20): BerthingData,
     (1, 18): ClearanceTime,
+    (1, 25): DangerousCargo,
     (1, 12): DangerousCargoImo236,
     (1, 26): Environmental,
+    (1, 13): FairwayClosed,
     (1, 2): FunctionInterrogation,
+    (200, 23): InlandEmmaWarning,
     (200, 21): InlandEta,
     (200, 55): InlandPersonsOnBoard,
     (200, 22): InlandRta,
@@ -123,10 +145,16 @@ APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
     (1, 31): MeteoHydro,
     (1, 11): MeteoHydroImo236,
     (1, 40): PersonsOnBoard,
+    (1, 27): RouteInformation,
+    (1, 28): RouteInformation,
+    (1, 24): ShipStaticVoyage,
+    (1, 21): ShipWeather,
     (1, 30): TextAddressed,
     (1, 29): TextBroadcast,
     (1, 32): TidalWindow,
     (1, 14): TidalWindowImo236,
+    (1, 19): TrafficSignal,
+    (367, 33): UscgEnvironmental,
     (1, 16): VtsTargets,
     (1, 17): VtsTargetsImo289,
 }

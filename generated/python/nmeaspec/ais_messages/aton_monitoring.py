@@ -27,7 +27,7 @@ class AtonMonitoring(ais.Application):
     ID: ClassVar[str] = "aton_monitoring"
     DAC: ClassVar[int] = 235
     FID: ClassVar[int] = 10
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(235, 10): (6,), (250, 10): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("ana_int", 10, divisor=20),
         ais.Unsigned("ana_ext1", 10, divisor=20),

@@ -23,7 +23,7 @@ class ClearanceTime(ais.Application):
     ID: ClassVar[str] = "clearance_time"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 18
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 18): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("linkage", 10, special=(ais.Special("not_available", 0),)),
         ais.Unsigned("month", 4, special=(ais.Special("not_available", 0),)),

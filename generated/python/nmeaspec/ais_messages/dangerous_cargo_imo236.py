@@ -24,7 +24,7 @@ class DangerousCargoImo236(ais.Application):
     ID: ClassVar[str] = "dangerous_cargo_imo236"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 12
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 12): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Text("lastport", 30),
         ais.Unsigned("lmonth", 4, special=(ais.Special("not_available", 0),)),

@@ -287,7 +287,7 @@ class Environmental(ais.Application):
     ID: ClassVar[str] = "environmental"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 26
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 26): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Group("reports", EnvironmentalReport, (
             ais.Code("report_type", 4, enum=AisSensorReport),

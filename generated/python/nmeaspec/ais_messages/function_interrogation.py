@@ -26,7 +26,7 @@ class FunctionInterrogation(ais.Application):
     ID: ClassVar[str] = "function_interrogation"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 2
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 2): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("req_dac", 10),
         ais.Unsigned("req_fid", 6),

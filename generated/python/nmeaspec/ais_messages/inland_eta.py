@@ -24,7 +24,7 @@ class InlandEta(ais.Application):
     ID: ClassVar[str] = "inland_eta"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 21
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 21): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Text("country", 12),
         ais.Text("locode", 18),

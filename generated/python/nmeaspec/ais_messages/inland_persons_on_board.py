@@ -26,7 +26,7 @@ class InlandPersonsOnBoard(ais.Application):
     ID: ClassVar[str] = "inland_persons_on_board"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 55
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 55): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("crew", 8, special=(ais.Special("not_available", 255),)),
         ais.Unsigned("passengers", 13, special=(ais.Special("not_available", 8191),)),

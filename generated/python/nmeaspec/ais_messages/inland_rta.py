@@ -23,7 +23,7 @@ class InlandRta(ais.Application):
     ID: ClassVar[str] = "inland_rta"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 22
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 22): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Text("country", 12),
         ais.Text("locode", 18),

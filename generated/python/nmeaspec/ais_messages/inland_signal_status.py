@@ -23,7 +23,7 @@ class InlandSignalStatus(ais.Application):
     ID: ClassVar[str] = "inland_signal_status"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 40
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 40): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Signed("lon", 28, divisor=600000, special=(ais.Special("not_available", 108600000),)),
         ais.Signed("lat", 27, divisor=600000, special=(ais.Special("not_available", 54600000),)),

@@ -28,7 +28,7 @@ class InlandStaticVoyage(ais.Application):
     ID: ClassVar[str] = "inland_static_voyage"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 10
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 10): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Text("vin", 48),
         ais.Unsigned("length", 13, divisor=10, special=(ais.Special("not_available", 0),)),

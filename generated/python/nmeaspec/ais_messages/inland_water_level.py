@@ -35,7 +35,7 @@ class InlandWaterLevel(ais.Application):
     ID: ClassVar[str] = "inland_water_level"
     DAC: ClassVar[int] = 200
     FID: ClassVar[int] = 24
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(200, 24): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Text("country", 12),
         ais.Group("gauges", InlandWaterLevelGauge, (

@@ -28,7 +28,7 @@ class MeteoHydro(ais.Application):
     ID: ClassVar[str] = "meteo_hydro"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 31
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 31): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Signed("lon", 25, divisor=60000, special=(ais.Special("not_available", 10860000),)),
         ais.Signed("lat", 24, divisor=60000, special=(ais.Special("not_available", 5460000),)),

@@ -28,7 +28,7 @@ class MeteoHydroImo236(ais.Application):
     ID: ClassVar[str] = "meteo_hydro_imo236"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 11
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 11): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Signed("lat", 24, divisor=60000, special=(ais.Special("not_available", 5460000),)),
         ais.Signed("lon", 25, divisor=60000, special=(ais.Special("not_available", 10860000),)),

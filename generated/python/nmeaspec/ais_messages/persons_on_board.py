@@ -25,7 +25,7 @@ class PersonsOnBoard(ais.Application):
     ID: ClassVar[str] = "persons_on_board"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 40
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 40): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("persons", 13, special=(ais.Special("not_available", 0),)),
         ais.Spare("spare", 3, optional=True),

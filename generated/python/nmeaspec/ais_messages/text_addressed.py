@@ -25,7 +25,7 @@ class TextAddressed(ais.Application):
     ID: ClassVar[str] = "text_addressed"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 30
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 30): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("linkage", 10),
         ais.Text("text", None),

@@ -22,7 +22,7 @@ class TextBroadcast(ais.Application):
     ID: ClassVar[str] = "text_broadcast"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 29
-    CARRIERS: ClassVar[tuple[int, ...]] = (8,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 29): (8,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("linkage", 10),
         ais.Text("text", None),

@@ -48,7 +48,7 @@ class TidalWindow(ais.Application):
     ID: ClassVar[str] = "tidal_window"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 32
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 32): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("month", 4, special=(ais.Special("not_available", 0),)),
         ais.Unsigned("day", 5, special=(ais.Special("not_available", 0),)),

@@ -48,7 +48,7 @@ class TidalWindowImo236(ais.Application):
     ID: ClassVar[str] = "tidal_window_imo236"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 14
-    CARRIERS: ClassVar[tuple[int, ...]] = (6,)
+    CARRIERS: ClassVar[dict[tuple[int, int], tuple[int, ...]]] = {(1, 14): (6,)}
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("month", 4, special=(ais.Special("not_available", 0),)),
         ais.Unsigned("day", 5, special=(ais.Special("not_available", 0),)),
