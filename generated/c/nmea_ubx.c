@@ -105,9 +105,10 @@
 //   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
 //   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
 //   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
-//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
-//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
-//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/meas_extra.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/sat_visibility.yaml, spec/binary/sbf/messages/receiver_status.yaml,
+//   spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
@@ -129,7 +130,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 828b0fe3b9ce03e6)
+//   spec/enums/ubx_gnss_id.yaml (digest 049f33c9e01a8a34)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -6407,6 +6408,49 @@ static const nmea_ubx_item ubx_casic_mon_ver_poll_items[1] = {{"", NULL, 0, 0, 0
 static const nmea_ubx_item ubx_casic_mon_ver_items[] = {
     {"sw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false},
     {"hw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* SBF 4000 rev 3: meas_extra */
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_mp_correction_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_smoothing_corr_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_scale = {10000.0, 0.0, true, ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_specials, 1};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_car_mp_corr_scale = {512.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sbf_meas_extra_meas_extra_channel_entry_items[] = {
+    {"rx_channel", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, rx_channel), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"signal_type", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, signal_type), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_lo", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, sig_idx_lo), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"antenna_id", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, antenna_id), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"mp_correction", &ubx_sbf_meas_extra_meas_extra_channel_entry_mp_correction_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, mp_correction), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"smoothing_corr", &ubx_sbf_meas_extra_meas_extra_channel_entry_smoothing_corr_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, smoothing_corr), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"code_var", &ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, code_var), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"carrier_var", &ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, carrier_var), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lock_time", &ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, lock_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cum_loss_cont", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, cum_loss_cont), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"car_mp_corr", &ubx_sbf_meas_extra_meas_extra_channel_entry_car_mp_corr_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, car_mp_corr), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"info", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, info), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"misc", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, misc), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cn0_high_res", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, cn0_high_res), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_hi", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, sig_idx_hi), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_special ubx_sbf_meas_extra_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_tow_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_wnc_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_wnc_specials, 1};
+static const nmea_ubx_group ubx_sbf_meas_extra_meas_extra_channel_group = {ubx_sbf_meas_extra_meas_extra_channel_entry_items, 16, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_meas_extra, n), 0, 0, 65535, NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX, 16, sizeof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry), 0, offsetof(nmea_ubx_sbf_meas_extra, meas_extra_channel_count), 1, offsetof(nmea_ubx_sbf_meas_extra, sb_length), "sb_length"};
+static const nmea_ubx_item ubx_sbf_meas_extra_items[] = {
+    {"tow", &ubx_sbf_meas_extra_tow_scale, offsetof(nmea_ubx_sbf_meas_extra, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_meas_extra_wnc_scale, offsetof(nmea_ubx_sbf_meas_extra, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n", NULL, offsetof(nmea_ubx_sbf_meas_extra, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb_length", NULL, offsetof(nmea_ubx_sbf_meas_extra, sb_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler_var_factor", NULL, offsetof(nmea_ubx_sbf_meas_extra, doppler_var_factor), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_extra_channel", &ubx_sbf_meas_extra_meas_extra_channel_group, offsetof(nmea_ubx_sbf_meas_extra, meas_extra_channel), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 4001 rev 0: pvt_dop */
@@ -15577,6 +15621,7 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_casic_cfg_rate_fast,
     NULL,
     ubx_casic_mon_ver_fast,
+    NULL,
     ubx_sbf_pvt_dop_fast,
     ubx_sbf_pvt_cartesian_fast,
     ubx_sbf_pvt_geodetic_fast,
@@ -16034,6 +16079,7 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_rate", "CFG-RATE", 0x06, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_cfg_rate_items, 2, 0, offsetof(nmea_ubx_casic_cfg_rate, trailing)},
     {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_mon_ver_poll_items, 0, 0, offsetof(nmea_ubx_casic_mon_ver_poll, trailing)},
     {"mon_ver", "MON-VER", 0x0A, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 64, -1, 0, ubx_casic_mon_ver_items, 2, 0, offsetof(nmea_ubx_casic_mon_ver, trailing)},
+    {"meas_extra", "4000 rev 3", 0xA0, 0x6F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_meas_extra_items, 6, 0, offsetof(nmea_ubx_sbf_meas_extra, trailing)},
     {"pvt_dop", "4001 rev 0", 0xA1, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, 24, -1, 0, ubx_sbf_pvt_dop_items, 10, 0, offsetof(nmea_ubx_sbf_pvt_dop, trailing)},
     {"pvt_cartesian", "4006 rev 2", 0xA6, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_cartesian_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_cartesian, trailing)},
     {"pvt_geodetic", "4007 rev 2", 0xA7, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_geodetic_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_geodetic, trailing)},
@@ -17280,46 +17326,47 @@ static const struct {
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 398, 399}, /* CASIC CFG-MSG */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 400, 401}, /* CASIC CFG-RATE */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 402, 403}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 404, 404}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 405, 405}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 406, 406}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAC, 0x0F}, 407, 407}, /* SBF 4012 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAE, 0x2F}, 408, 408}, /* SBF 4014 rev 1 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xCB, 0x0F}, 409, 409}, /* SBF 4043 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 410, 410}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 411, 411}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 412, 412}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 413, 413}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x17, 0x17}, 414, 414}, /* SBF 5911 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 415, 415}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x21, 0x17}, 416, 416}, /* SBF 5921 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 417, 417}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 418, 418}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 419, 419}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 420, 420}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 421, 421}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 422, 422}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 423, 423}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 424, 424}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 425, 425}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 426, 426}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 427, 427}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 428, 428}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 429, 429}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 430, 430}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 431, 431}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 432, 432}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 433, 433}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 434, 434}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 435, 435}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 436, 436}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 437, 437}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 438, 438}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 439, 439}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 440, 440}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 441, 441}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 442, 442}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 443, 443}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA0, 0x6F}, 404, 404}, /* SBF 4000 rev 3 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 405, 405}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 406, 406}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 407, 407}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAC, 0x0F}, 408, 408}, /* SBF 4012 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAE, 0x2F}, 409, 409}, /* SBF 4014 rev 1 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xCB, 0x0F}, 410, 410}, /* SBF 4043 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 411, 411}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 412, 412}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 413, 413}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 414, 414}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x17, 0x17}, 415, 415}, /* SBF 5911 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 416, 416}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x21, 0x17}, 417, 417}, /* SBF 5921 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 418, 418}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 419, 419}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 420, 420}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 421, 421}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 422, 422}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 423, 423}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 424, 424}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 425, 425}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 426, 426}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 427, 427}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 428, 428}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 429, 429}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 430, 430}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 431, 431}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 432, 432}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 433, 433}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 434, 434}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 435, 435}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 436, 436}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 437, 437}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 438, 438}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 439, 439}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 440, 440}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 441, 441}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 442, 442}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 443, 443}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 444, 444}, /* SKYTRAQ 0xE0 */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

@@ -105,9 +105,10 @@
 //   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
 //   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
 //   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
-//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
-//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
-//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/meas_extra.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/sat_visibility.yaml, spec/binary/sbf/messages/receiver_status.yaml,
+//   spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
@@ -129,7 +130,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 6020995ad4707a35)
+//   spec/enums/ubx_gnss_id.yaml (digest 492a75569b27cc5e)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -569,6 +570,9 @@ typedef enum {
 #endif
 #ifndef NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX
 #define NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX
+#define NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX
 #define NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
@@ -6155,6 +6159,38 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_casic_mon_ver;
 
+/* One entry of signals (measextrachannelsub sub-blocks) (meas_extra_channel). */
+typedef struct {
+    uint8_t rx_channel; /* Receiver channel */
+    uint8_t signal_type; /* Signal and antenna (bitfield) */
+    uint8_t sig_idx_lo; /* Signal number (its low bits; 31 when sig_idx_hi holds it) (signal_type bits 0-4) */
+    uint8_t antenna_id; /* Antenna (0 main) (signal_type bits 5-7) */
+    int16_t mp_correction; /* Multipath correction of the code (already applied) [m]; raw, value = raw / 1000 */
+    int16_t smoothing_corr; /* Smoothing correction of the code (already applied) [m]; raw, value = raw / 1000 */
+    uint16_t code_var; /* Variance of the code [m²]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t carrier_var; /* Variance of the carrier phase [mcycle²]; raw, value = raw; 65535: do_not_use */
+    uint16_t lock_time; /* Time the carrier phase has been tracked without interruption (clipped to 65534 s) [s]; raw, value = raw; 65535: do_not_use */
+    uint8_t cum_loss_cont; /* Loss-of-continuity counter (modulo 256) */
+    int8_t car_mp_corr; /* Multipath correction of the carrier phase (already applied) [cycle]; raw, value = raw / 512 */
+    uint8_t info; /* Information flags */
+    uint8_t misc; /* C/N0's fraction and the signal number's high bits (bitfield) */
+    uint8_t cn0_high_res; /* C/N0's fraction to add to MeasEpoch's (each 0.03125 dB-Hz) (misc bits 0-2) */
+    uint8_t sig_idx_hi; /* Signal number (32 and above, when sig_idx_lo is 31) (misc bits 3-7) */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_meas_extra_meas_extra_channel_entry;
+
+/* Measurements' additional information (MeasExtra): SBF 4000 rev 3 (id 0x6FA0), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n; /* MeasExtraChannelSub sub-blocks */
+    uint8_t sb_length; /* Bytes of a MeasExtraChannelSub sub-block [byte] */
+    float doppler_var_factor; /* Factor of the Doppler variance from the carrier variance (its bits as sent) */
+    uint16_t meas_extra_channel_count; /* the entries of meas_extra_channel */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_meas_extra_meas_extra_channel_entry meas_extra_channel[NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX]; /* Signals (MeasExtraChannelSub sub-blocks) */
+} nmea_ubx_sbf_meas_extra;
+
 /* Dilutions of precision (DOP): SBF 4001 rev 0 (id 0x0FA1), output. */
 typedef struct {
     uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
@@ -7355,6 +7391,7 @@ typedef enum {
     NMEA_UBX_MSG_CASIC_CFG_RATE, /* CASIC CFG-RATE, input, output */
     NMEA_UBX_MSG_CASIC_MON_VER_POLL, /* CASIC MON-VER, poll */
     NMEA_UBX_MSG_CASIC_MON_VER, /* CASIC MON-VER, output */
+    NMEA_UBX_MSG_SBF_MEAS_EXTRA, /* SBF 4000 rev 3, output */
     NMEA_UBX_MSG_SBF_PVT_DOP, /* SBF 4001 rev 0, output */
     NMEA_UBX_MSG_SBF_PVT_CARTESIAN, /* SBF 4006 rev 2, output */
     NMEA_UBX_MSG_SBF_PVT_GEODETIC, /* SBF 4007 rev 2, output */
@@ -7806,6 +7843,7 @@ typedef struct {
         nmea_ubx_casic_cfg_rate casic_cfg_rate;
         nmea_ubx_casic_mon_ver_poll casic_mon_ver_poll;
         nmea_ubx_casic_mon_ver casic_mon_ver;
+        nmea_ubx_sbf_meas_extra sbf_meas_extra;
         nmea_ubx_sbf_pvt_dop sbf_pvt_dop;
         nmea_ubx_sbf_pvt_cartesian sbf_pvt_cartesian;
         nmea_ubx_sbf_pvt_geodetic sbf_pvt_geodetic;

@@ -177,7 +177,7 @@ def test_gpsd_agrees() -> None:
 # logs' frame split, tests/ubx/test_stream_frames.py); the other blocks stay binary.Unknown.
 SBF_EXPECTED = {"4006 rev 2": 58, "4007 rev 2": 2, "5905 rev 0": 58, "5906 rev 0": 1, "5907 rev 0": 58,
                 "5908 rev 0": 1, "4001 rev 0": 1, "5914 rev 0": 1, "4012 rev 0": 3, "4014 rev 1": 3,
-                "4043 rev 0": 58, "5911 rev 0": 1, "5921 rev 0": 1}
+                "4043 rev 0": 58, "5911 rev 0": 1, "5921 rev 0": 1, "4000 rev 3": 1}
 
 
 def sbf_frames() -> list[bytes]:
