@@ -137,7 +137,7 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
 def _check_nested(group: PayloadGroup, seen: dict[str, PayloadField], report: Report) -> None:
     """B010: a group in a group's entry (SBF's N2 Type-2 sub-blocks after each Type-1 of
     SB1Length): the last item of an entry of a stride, counted by an unsigned field of that entry,
-    strided (if at all) by an unsigned field before the outer group; one level only."""
+    strided by an unsigned field before the outer group; one level only."""
     inner = [i for i in group.items if isinstance(i, PayloadGroup)]
     if not inner:
         return
@@ -153,13 +153,12 @@ def _check_nested(group: PayloadGroup, seen: dict[str, PayloadField], report: Re
     if count is None or count.bit_type.name not in ("u1", "u2", "u4", "uint"):
         report(nested.origin, "B010", f"group {nested.id}: count {nested.count} names no unsigned field of the "
                f"entry of {group.id} before it", "count")
-    if nested.stride is not None:
-        stride = seen.get(nested.stride)
-        if stride is None or stride.bit_type.name not in ("u1", "u2", "u4"):
-            report(nested.origin, "B010", f"group {nested.id}: stride {nested.stride} names no unsigned field (u1, "
-                   f"u2, u4) before {group.id}", "stride")
-        if len(nested.fields) < 2:
-            report(nested.origin, "B003", f"group {nested.id}: a stride's entry has at least one field", "fields")
+    stride = seen.get(nested.stride) if nested.stride is not None else None
+    if stride is None or stride.bit_type.name not in ("u1", "u2", "u4"):
+        report(nested.origin, "B010", f"group {nested.id}: stride {nested.stride} names no unsigned field (u1, u2, "
+               f"u4) before {group.id}", "stride")
+    if len(nested.fields) < 2:
+        report(nested.origin, "B003", f"group {nested.id}: a stride's entry has at least one field", "fields")
     if nested.nested is not None or nested.field_major or nested.choices:
         report(nested.origin, "B010", f"group {nested.id}: a nested group's entry holds fields only (no group, "
                "choice or field-major order)", "fields")

@@ -290,8 +290,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Correct the enum, the scale or the document id."),
     Rule("B010", "a group in a group's entry is counted by the entry",
          "A group may end the entry of a group of a `stride` (SBF's Type-2 sub-blocks after each Type-1): it is "
-         "the entry's last item, its `count` names an unsigned field of that entry, its `stride` (if any) an "
-         "unsigned field (u1, u2, u4) before the outer group; its own entries hold fields only (one level).",
+         "the entry's last item, its `count` names an unsigned field of that entry, its `stride` an unsigned field "
+         "(u1, u2, u4) before the outer group; its own entries hold fields only (one level).",
          "Move the group to the end of the entry, correct `count` or `stride`, or give the outer group a stride."),
 )}
 

@@ -3,13 +3,14 @@
 // Source: templates/rust/binary_messages.rs.j2, spec/binary/sbf/messages/meas_extra.yaml,
 //   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
 //   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
-//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/channel_status.yaml, spec/binary/sbf/messages/receiver_status.yaml,
+//   spec/binary/sbf/messages/meas_epoch.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/xpps_offset.yaml,
 //   spec/binary/sbf/messages/receiver_time.yaml, spec/binary/sbf/messages/end_of_pvt.yaml
-//   (digest 5c9f0b8ae7a0634a)
+//   (digest c9f4b23449f5fe35)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The Septentrio SBF messages of spec/binary/sbf: a struct per layout (named as the Python
@@ -1810,6 +1811,301 @@ impl<'a> SatVisibility<'a> {
     }
 }
 
+/// One entry of ChannelStatusChannelStateInfoEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChannelStatusChannelStateInfoEntry<'a> {
+    /// Antenna (0 main).
+    pub antenna: u8,
+    /// Reserved.
+    pub reserved: u8,
+    /// Tracking status of each signal (two bits a signal; 0 idle, 1 searching, 2 synchronising, 3 tracking).
+    pub tracking_status: u16,
+    /// PVT use of each signal (two bits a signal; 0 not used, 1 waiting for an ephemeris, 2 used, 3 rejected).
+    pub pvt_status: u16,
+    /// Why a signal is rejected from the PVT (a bit a reason).
+    pub pvt_info: u16,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ubx::Entry<'a> for ChannelStatusChannelStateInfoEntry<'a> {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let antenna = u8::from_le_bytes(r.array("antenna")?);
+        let reserved = u8::from_le_bytes(r.array("reserved")?);
+        let tracking_status = u16::from_le_bytes(r.array("tracking_status")?);
+        let pvt_status = u16::from_le_bytes(r.array("pvt_status")?);
+        let pvt_info = u16::from_le_bytes(r.array("pvt_info")?);
+        let trailing = r.left(0);
+        Ok(Self { antenna, reserved, tracking_status, pvt_status, pvt_info, trailing })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.antenna.to_le_bytes());
+        w.put(&self.reserved.to_le_bytes());
+        w.put(&self.tracking_status.to_le_bytes());
+        w.put(&self.pvt_status.to_le_bytes());
+        w.put(&self.pvt_info.to_le_bytes());
+        w.put_sized(self.trailing, None, "4013 rev 0", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("antenna", self.antenna)?;
+        j.int("reserved", self.reserved)?;
+        j.int("tracking_status", self.tracking_status)?;
+        j.int("pvt_status", self.pvt_status)?;
+        j.int("pvt_info", self.pvt_info)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of ChannelStatusChannelSatInfoEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChannelStatusChannelSatInfoEntry<'a> {
+    /// Satellite (SBF satellite number).
+    pub svid: u8,
+    /// GLONASS frequency number plus 8 (1 to 21; reserved for other signals).
+    pub freq_nr_raw: u8,
+    /// Reserved.
+    pub reserved: u16,
+    /// Azimuth and rising or setting.
+    pub azimuth_rise_set: u16,
+    /// Health of each signal (two bits a signal; 0 unknown, 1 healthy, 3 unhealthy).
+    pub health_status: u16,
+    /// Elevation above the local horizontal plane [deg].
+    pub elevation_raw: i8,
+    /// ChannelStateInfo sub-blocks after this one.
+    pub n2: u8,
+    /// Receiver channel.
+    pub rx_channel: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+    /// Antennas tracking the satellite (ChannelStateInfo sub-blocks): n2 entries.
+    pub channel_state_info: ubx::Group<'a, ChannelStatusChannelStateInfoEntry<'a>>,
+}
+
+impl<'a> ubx::Entry<'a> for ChannelStatusChannelSatInfoEntry<'a> {
+    const WIDTH: usize = 12;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let svid = u8::from_le_bytes(r.array("svid")?);
+        let freq_nr_raw = u8::from_le_bytes(r.array("freq_nr")?);
+        let reserved = u16::from_le_bytes(r.array("reserved")?);
+        let azimuth_rise_set = u16::from_le_bytes(r.array("azimuth_rise_set")?);
+        let health_status = u16::from_le_bytes(r.array("health_status")?);
+        let elevation_raw = i8::from_le_bytes(r.array("elevation")?);
+        let n2 = u8::from_le_bytes(r.array("n2")?);
+        let rx_channel = u8::from_le_bytes(r.array("rx_channel")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let trailing = r.left(0);
+        let channel_state_info = ubx::Group::default();
+        Ok(Self {
+            svid,
+            freq_nr_raw,
+            reserved,
+            azimuth_rise_set,
+            health_status,
+            elevation_raw,
+            n2,
+            rx_channel,
+            reserved2,
+            trailing,
+            channel_state_info,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.svid.to_le_bytes());
+        w.put(&self.freq_nr_raw.to_le_bytes());
+        w.put(&self.reserved.to_le_bytes());
+        w.put(&self.azimuth_rise_set.to_le_bytes());
+        w.put(&self.health_status.to_le_bytes());
+        w.put(&self.elevation_raw.to_le_bytes());
+        w.put(&self.n2.to_le_bytes());
+        w.put(&self.rx_channel.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put_sized(self.trailing, None, "4013 rev 0", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("svid", self.svid)?;
+        match ais::counted(i64::from(self.freq_nr_raw), 0, &[(0, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("freq_nr", x)?,
+            ais::Reading::Special(id) => j.text("freq_nr", id)?,
+        }
+        j.int("freq_nr_raw", self.freq_nr_raw)?;
+        j.int("reserved", self.reserved)?;
+        j.int("azimuth_rise_set", self.azimuth_rise_set)?;
+        j.int("azimuth", self.azimuth_rise_set & 0x1ff)?;
+        j.int("rise_set", ((self.azimuth_rise_set >> 14) & 0x3) as u8)?;
+        j.int("health_status", self.health_status)?;
+        match ais::counted(i64::from(self.elevation_raw), 0, &[(-128, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("elevation", x)?,
+            ais::Reading::Special(id) => j.text("elevation", id)?,
+        }
+        j.int("elevation_raw", self.elevation_raw)?;
+        j.int("n2", self.n2)?;
+        j.int("rx_channel", self.rx_channel)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        self.channel_state_info.json(j, "channel_state_info")?;
+        Ok(())
+    }
+    const NESTED_WIDTH: usize = 8;
+    fn nested_count(head: &[u8]) -> usize {
+        head.get(9).map_or(0, |&b| usize::from(b))
+    }
+    fn set_nested(&mut self, bytes: &'a [u8], stride: usize) {
+        self.channel_state_info = ubx::Group::with_stride(bytes, stride).unwrap_or_default();
+    }
+}
+
+impl<'a> ChannelStatusChannelSatInfoEntry<'a> {
+    /// GLONASS frequency number plus 8 (1 to 21; reserved for other signals), or its special value.
+    pub fn freq_nr(&self) -> ais::Reading<i64> {
+        let raw = self.freq_nr_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "do_not_use")])
+    }
+    /// Azimuth (0 north, increasing towards east; 511 not available) [deg] (bits 0-8 of `azimuth_rise_set`).
+    pub fn azimuth(&self) -> u16 {
+        self.azimuth_rise_set & 0x1ff
+    }
+    /// Sets azimuth (0 north, increasing towards east; 511 not available) (the value in its bits of `azimuth_rise_set`; the other bits stay).
+    pub fn set_azimuth(&mut self, value: u16) {
+        self.azimuth_rise_set = (self.azimuth_rise_set & !0x1ff) | (value & 0x1ff);
+    }
+    /// Rising (1), setting (0) or elevation rate unknown (3) (bits 14-15 of `azimuth_rise_set`).
+    pub fn rise_set(&self) -> u8 {
+        ((self.azimuth_rise_set >> 14) & 0x3) as u8
+    }
+    /// Sets rising (1), setting (0) or elevation rate unknown (3) (the value in its bits of `azimuth_rise_set`; the other bits stay).
+    pub fn set_rise_set(&mut self, value: u8) {
+        self.azimuth_rise_set = (self.azimuth_rise_set & !(0x3 << 14)) | ((value as u16 & 0x3) << 14);
+    }
+    /// Elevation above the local horizontal plane [deg], or its special value.
+    pub fn elevation(&self) -> ais::Reading<i64> {
+        let raw = self.elevation_raw;
+        ais::counted(i64::from(raw), 0, &[(-128, "do_not_use")])
+    }
+}
+
+/// Status of the tracking channels (ChannelStatus): SBF 4013 rev 0 (id 0x0FAD), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChannelStatus<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// ChannelSatInfo sub-blocks.
+    pub n: u8,
+    /// Bytes of a ChannelSatInfo sub-block (its ChannelStateInfo sub-blocks not counted) [byte].
+    pub sb1_length: u8,
+    /// Bytes of a ChannelStateInfo sub-block [byte].
+    pub sb2_length: u8,
+    /// Reserved.
+    pub reserved: u32,
+    /// Satellites tracked (ChannelSatInfo sub-blocks) (each followed by its channel_state_info): 0 to 65535 entries.
+    pub channel_sat_info: ubx::Nesting<'a, ChannelStatusChannelSatInfoEntry<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ChannelStatus<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "channel_status";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "4013 rev 0";
+    /// The bytes that tell the message: id 0x0FAD.
+    pub const KEY: &'static [u8] = &[0xad, 0x0f];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let n = u8::from_le_bytes(r.array("n")?);
+        let sb1_length = u8::from_le_bytes(r.array("sb1_length")?);
+        let sb2_length = u8::from_le_bytes(r.array("sb2_length")?);
+        let reserved = {
+            let b: [u8; 3] = r.array("reserved")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let channel_sat_info = r.group_nesting(
+            usize::from(n),
+            usize::from(sb1_length),
+            usize::from(sb2_length),
+            "channel_sat_info",
+            "sb1_length",
+            "channel_state_info",
+            "sb2_length",
+        )?;
+        let trailing = r.rest();
+        Ok(Self { tow_raw, wnc_raw, n, sb1_length, sb2_length, reserved, channel_sat_info, trailing })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.n.to_le_bytes());
+        w.put(&self.sb1_length.to_le_bytes());
+        w.put(&self.sb2_length.to_le_bytes());
+        w.put(&self.reserved.to_le_bytes()[..3]);
+        self.channel_sat_info.write_strided(
+            w,
+            (usize::from(self.sb1_length), usize::from(self.sb2_length)),
+            "4013 rev 0",
+            ("sb1_length", "sb2_length"),
+            "channel_sat_info",
+            "channel_state_info",
+        )?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        j.int("n", self.n)?;
+        j.int("sb1_length", self.sb1_length)?;
+        j.int("sb2_length", self.sb2_length)?;
+        j.int("reserved", self.reserved)?;
+        self.channel_sat_info.json(j, "channel_sat_info")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// One entry of ReceiverStatusAgcStateEntry.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ReceiverStatusAgcStateEntry<'a> {
@@ -2304,6 +2600,603 @@ impl<'a> ReceiverStatus<'a> {
         }
         j.int("temperature_raw", self.temperature_raw)?;
         self.agc_state.json(j, "agc_state")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MeasEpochType2Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeasEpochType2Entry<'a> {
+    /// Signal and antenna.
+    pub signal_type: u8,
+    /// Time the carrier phase has been tracked without interruption (clipped to 254 s) [s].
+    pub lock_time_raw: u8,
+    /// C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz].
+    pub cn0_raw: u8,
+    /// Offsets' most significant bits.
+    pub offsets_msb: u8,
+    /// Carrier phase's most significant bits (each 65.536 cycles).
+    pub carrier_msb_raw: i8,
+    /// Observation information.
+    pub obs_info: u8,
+    /// Code offset from the Type-1 pseudorange's least significant bits [m].
+    pub code_offset_lsb_raw: u16,
+    /// Carrier phase's least significant bits [cycle].
+    pub carrier_lsb_raw: u16,
+    /// Doppler offset's least significant bits [Hz].
+    pub doppler_offset_lsb_raw: u16,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ubx::Entry<'a> for MeasEpochType2Entry<'a> {
+    const WIDTH: usize = 12;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let signal_type = u8::from_le_bytes(r.array("signal_type")?);
+        let lock_time_raw = u8::from_le_bytes(r.array("lock_time")?);
+        let cn0_raw = u8::from_le_bytes(r.array("cn0")?);
+        let offsets_msb = u8::from_le_bytes(r.array("offsets_msb")?);
+        let carrier_msb_raw = i8::from_le_bytes(r.array("carrier_msb")?);
+        let obs_info = u8::from_le_bytes(r.array("obs_info")?);
+        let code_offset_lsb_raw = u16::from_le_bytes(r.array("code_offset_lsb")?);
+        let carrier_lsb_raw = u16::from_le_bytes(r.array("carrier_lsb")?);
+        let doppler_offset_lsb_raw = u16::from_le_bytes(r.array("doppler_offset_lsb")?);
+        let trailing = r.left(0);
+        Ok(Self {
+            signal_type,
+            lock_time_raw,
+            cn0_raw,
+            offsets_msb,
+            carrier_msb_raw,
+            obs_info,
+            code_offset_lsb_raw,
+            carrier_lsb_raw,
+            doppler_offset_lsb_raw,
+            trailing,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.signal_type.to_le_bytes());
+        w.put(&self.lock_time_raw.to_le_bytes());
+        w.put(&self.cn0_raw.to_le_bytes());
+        w.put(&self.offsets_msb.to_le_bytes());
+        w.put(&self.carrier_msb_raw.to_le_bytes());
+        w.put(&self.obs_info.to_le_bytes());
+        w.put(&self.code_offset_lsb_raw.to_le_bytes());
+        w.put(&self.carrier_lsb_raw.to_le_bytes());
+        w.put(&self.doppler_offset_lsb_raw.to_le_bytes());
+        w.put_sized(self.trailing, None, "4027 rev 1", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("signal_type", self.signal_type)?;
+        j.int("sig_idx_lo", self.signal_type & 0x1f)?;
+        j.int("antenna_id", (self.signal_type >> 5) & 0x7)?;
+        match ais::counted(i64::from(self.lock_time_raw), 0, &[(255, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("lock_time", x)?,
+            ais::Reading::Special(id) => j.text("lock_time", id)?,
+        }
+        j.int("lock_time_raw", self.lock_time_raw)?;
+        match ais::scaled(i64::from(self.cn0_raw), 4.0, 0.0, &[(255, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cn0", x)?,
+            ais::Reading::Special(id) => j.text("cn0", id)?,
+        }
+        j.int("cn0_raw", self.cn0_raw)?;
+        j.int("offsets_msb", self.offsets_msb)?;
+        j.int("code_offset_msb", (((self.offsets_msb & 0x7) as i8) << 5) >> 5)?;
+        j.int("doppler_offset_msb", ((((self.offsets_msb >> 3) & 0x1f) as i8) << 3) >> 3)?;
+        match ais::counted(i64::from(self.carrier_msb_raw), 0, &[(-128, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("carrier_msb", x)?,
+            ais::Reading::Special(id) => j.text("carrier_msb", id)?,
+        }
+        j.int("carrier_msb_raw", self.carrier_msb_raw)?;
+        j.int("obs_info", self.obs_info)?;
+        j.flag("pr_smoothed", (self.obs_info & 0x1) != 0)?;
+        j.flag("half_cycle_ambiguity", ((self.obs_info >> 2) & 0x1) != 0)?;
+        j.int("sig_idx_hi", (self.obs_info >> 3) & 0x1f)?;
+        ubx::json_float(j, "code_offset_lsb", self.code_offset_lsb_raw as f64 / 1000.0)?;
+        j.int("code_offset_lsb_raw", self.code_offset_lsb_raw)?;
+        ubx::json_float(j, "carrier_lsb", self.carrier_lsb_raw as f64 / 1000.0)?;
+        j.int("carrier_lsb_raw", self.carrier_lsb_raw)?;
+        ubx::json_float(j, "doppler_offset_lsb", self.doppler_offset_lsb_raw as f64 / 10000.0)?;
+        j.int("doppler_offset_lsb_raw", self.doppler_offset_lsb_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+impl<'a> MeasEpochType2Entry<'a> {
+    /// Signal number (its low bits; 31 when sig_idx_hi holds it) (bits 0-4 of `signal_type`).
+    pub fn sig_idx_lo(&self) -> u8 {
+        self.signal_type & 0x1f
+    }
+    /// Sets signal number (its low bits; 31 when sig_idx_hi holds it) (the value in its bits of `signal_type`; the other bits stay).
+    pub fn set_sig_idx_lo(&mut self, value: u8) {
+        self.signal_type = (self.signal_type & !0x1f) | (value & 0x1f);
+    }
+    /// Antenna (0 main) (bits 5-7 of `signal_type`).
+    pub fn antenna_id(&self) -> u8 {
+        (self.signal_type >> 5) & 0x7
+    }
+    /// Sets antenna (0 main) (the value in its bits of `signal_type`; the other bits stay).
+    pub fn set_antenna_id(&mut self, value: u8) {
+        self.signal_type = (self.signal_type & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+    /// Time the carrier phase has been tracked without interruption (clipped to 254 s) [s], or its special value.
+    pub fn lock_time(&self) -> ais::Reading<i64> {
+        let raw = self.lock_time_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "do_not_use")])
+    }
+    /// C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz]: the raw integer divided by 4, or its special value.
+    pub fn cn0(&self) -> ais::Reading<f64> {
+        let raw = self.cn0_raw;
+        ais::scaled(i64::from(raw), 4.0, 0.0, &[(255, "do_not_use")])
+    }
+    /// Code offset's most significant bits (each 65.536 m; two's complement, -4 with code_offset_lsb 0: not available) (bits 0-2 of `offsets_msb`).
+    pub fn code_offset_msb(&self) -> i8 {
+        (((self.offsets_msb & 0x7) as i8) << 5) >> 5
+    }
+    /// Sets code offset's most significant bits (each 65.536 m; two's complement, -4 with code_offset_lsb 0: not available) (the value in its bits of `offsets_msb`; the other bits stay).
+    pub fn set_code_offset_msb(&mut self, value: i8) {
+        self.offsets_msb = (self.offsets_msb & !0x7) | (value as u8 & 0x7);
+    }
+    /// Doppler offset's most significant bits (each 6.5536 Hz; two's complement, -16 with doppler_offset_lsb 0: not available) (bits 3-7 of `offsets_msb`).
+    pub fn doppler_offset_msb(&self) -> i8 {
+        ((((self.offsets_msb >> 3) & 0x1f) as i8) << 3) >> 3
+    }
+    /// Sets doppler offset's most significant bits (each 6.5536 hz; two's complement, -16 with doppler_offset_lsb 0: not available) (the value in its bits of `offsets_msb`; the other bits stay).
+    pub fn set_doppler_offset_msb(&mut self, value: i8) {
+        self.offsets_msb = (self.offsets_msb & !(0x1f << 3)) | ((value as u8 & 0x1f) << 3);
+    }
+    /// Carrier phase's most significant bits (each 65.536 cycles), or its special value.
+    pub fn carrier_msb(&self) -> ais::Reading<i64> {
+        let raw = self.carrier_msb_raw;
+        ais::counted(i64::from(raw), 0, &[(-128, "do_not_use")])
+    }
+    /// Pseudorange smoothed by the carrier (bit 0 of `obs_info`).
+    pub fn pr_smoothed(&self) -> bool {
+        (self.obs_info & 0x1) != 0
+    }
+    /// Sets pseudorange smoothed by the carrier (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_pr_smoothed(&mut self, value: bool) {
+        self.obs_info = (self.obs_info & !0x1) | u8::from(value);
+    }
+    /// Half-cycle ambiguity not resolved (bit 2 of `obs_info`).
+    pub fn half_cycle_ambiguity(&self) -> bool {
+        ((self.obs_info >> 2) & 0x1) != 0
+    }
+    /// Sets half-cycle ambiguity not resolved (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_half_cycle_ambiguity(&mut self, value: bool) {
+        self.obs_info = (self.obs_info & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Signal number (32 and above, when sig_idx_lo is 31) (bits 3-7 of `obs_info`).
+    pub fn sig_idx_hi(&self) -> u8 {
+        (self.obs_info >> 3) & 0x1f
+    }
+    /// Sets signal number (32 and above, when sig_idx_lo is 31) (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_sig_idx_hi(&mut self, value: u8) {
+        self.obs_info = (self.obs_info & !(0x1f << 3)) | ((value & 0x1f) << 3);
+    }
+    /// Code offset from the Type-1 pseudorange's least significant bits [m]: the raw integer divided by 1000.
+    pub fn code_offset_lsb(&self) -> f64 {
+        let raw = self.code_offset_lsb_raw;
+        raw as f64 / 1000.0
+    }
+    /// Carrier phase's least significant bits [cycle]: the raw integer divided by 1000.
+    pub fn carrier_lsb(&self) -> f64 {
+        let raw = self.carrier_lsb_raw;
+        raw as f64 / 1000.0
+    }
+    /// Doppler offset's least significant bits [Hz]: the raw integer divided by 10000.
+    pub fn doppler_offset_lsb(&self) -> f64 {
+        let raw = self.doppler_offset_lsb_raw;
+        raw as f64 / 10000.0
+    }
+}
+
+/// One entry of MeasEpochType1Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeasEpochType1Entry<'a> {
+    /// Receiver channel.
+    pub rx_channel: u8,
+    /// Signal and antenna.
+    pub signal_type: u8,
+    /// Satellite (SBF satellite number).
+    pub svid: u8,
+    /// Code's most significant bits.
+    pub misc: u8,
+    /// Pseudorange's least significant bits [m].
+    pub code_lsb_raw: u32,
+    /// Doppler (positive for an approaching satellite) [Hz].
+    pub doppler_raw: i32,
+    /// Carrier phase's least significant bits (relative to the pseudorange) [cycle].
+    pub carrier_lsb_raw: u16,
+    /// Carrier phase's most significant bits (each 65.536 cycles).
+    pub carrier_msb_raw: i8,
+    /// C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz].
+    pub cn0_raw: u8,
+    /// Time the carrier phase has been tracked without interruption (clipped to 65534 s) [s].
+    pub lock_time_raw: u16,
+    /// Observation information.
+    pub obs_info: u8,
+    /// Type-2 sub-blocks after this one.
+    pub n2: u8,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+    /// The satellite's other signals (Type-2 sub-blocks): n2 entries.
+    pub type2: ubx::Group<'a, MeasEpochType2Entry<'a>>,
+}
+
+impl<'a> ubx::Entry<'a> for MeasEpochType1Entry<'a> {
+    const WIDTH: usize = 20;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let rx_channel = u8::from_le_bytes(r.array("rx_channel")?);
+        let signal_type = u8::from_le_bytes(r.array("signal_type")?);
+        let svid = u8::from_le_bytes(r.array("svid")?);
+        let misc = u8::from_le_bytes(r.array("misc")?);
+        let code_lsb_raw = u32::from_le_bytes(r.array("code_lsb")?);
+        let doppler_raw = i32::from_le_bytes(r.array("doppler")?);
+        let carrier_lsb_raw = u16::from_le_bytes(r.array("carrier_lsb")?);
+        let carrier_msb_raw = i8::from_le_bytes(r.array("carrier_msb")?);
+        let cn0_raw = u8::from_le_bytes(r.array("cn0")?);
+        let lock_time_raw = u16::from_le_bytes(r.array("lock_time")?);
+        let obs_info = u8::from_le_bytes(r.array("obs_info")?);
+        let n2 = u8::from_le_bytes(r.array("n2")?);
+        let trailing = r.left(0);
+        let type2 = ubx::Group::default();
+        Ok(Self {
+            rx_channel,
+            signal_type,
+            svid,
+            misc,
+            code_lsb_raw,
+            doppler_raw,
+            carrier_lsb_raw,
+            carrier_msb_raw,
+            cn0_raw,
+            lock_time_raw,
+            obs_info,
+            n2,
+            trailing,
+            type2,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.rx_channel.to_le_bytes());
+        w.put(&self.signal_type.to_le_bytes());
+        w.put(&self.svid.to_le_bytes());
+        w.put(&self.misc.to_le_bytes());
+        w.put(&self.code_lsb_raw.to_le_bytes());
+        w.put(&self.doppler_raw.to_le_bytes());
+        w.put(&self.carrier_lsb_raw.to_le_bytes());
+        w.put(&self.carrier_msb_raw.to_le_bytes());
+        w.put(&self.cn0_raw.to_le_bytes());
+        w.put(&self.lock_time_raw.to_le_bytes());
+        w.put(&self.obs_info.to_le_bytes());
+        w.put(&self.n2.to_le_bytes());
+        w.put_sized(self.trailing, None, "4027 rev 1", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("rx_channel", self.rx_channel)?;
+        j.int("signal_type", self.signal_type)?;
+        j.int("sig_idx_lo", self.signal_type & 0x1f)?;
+        j.int("antenna_id", (self.signal_type >> 5) & 0x7)?;
+        j.int("svid", self.svid)?;
+        j.int("misc", self.misc)?;
+        j.int("code_msb", self.misc & 0xf)?;
+        ubx::json_float(j, "code_lsb", self.code_lsb_raw as f64 / 1000.0)?;
+        j.int("code_lsb_raw", self.code_lsb_raw)?;
+        match ais::scaled(i64::from(self.doppler_raw), 10000.0, 0.0, &[(-2147483648, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "doppler", x)?,
+            ais::Reading::Special(id) => j.text("doppler", id)?,
+        }
+        j.int("doppler_raw", self.doppler_raw)?;
+        ubx::json_float(j, "carrier_lsb", self.carrier_lsb_raw as f64 / 1000.0)?;
+        j.int("carrier_lsb_raw", self.carrier_lsb_raw)?;
+        match ais::counted(i64::from(self.carrier_msb_raw), 0, &[(-128, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("carrier_msb", x)?,
+            ais::Reading::Special(id) => j.text("carrier_msb", id)?,
+        }
+        j.int("carrier_msb_raw", self.carrier_msb_raw)?;
+        match ais::scaled(i64::from(self.cn0_raw), 4.0, 0.0, &[(255, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cn0", x)?,
+            ais::Reading::Special(id) => j.text("cn0", id)?,
+        }
+        j.int("cn0_raw", self.cn0_raw)?;
+        match ais::counted(i64::from(self.lock_time_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("lock_time", x)?,
+            ais::Reading::Special(id) => j.text("lock_time", id)?,
+        }
+        j.int("lock_time_raw", self.lock_time_raw)?;
+        j.int("obs_info", self.obs_info)?;
+        j.flag("pr_smoothed", (self.obs_info & 0x1) != 0)?;
+        j.flag("half_cycle_ambiguity", ((self.obs_info >> 2) & 0x1) != 0)?;
+        j.int("sig_idx_hi", (self.obs_info >> 3) & 0x1f)?;
+        j.int("n2", self.n2)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        self.type2.json(j, "type2")?;
+        Ok(())
+    }
+    const NESTED_WIDTH: usize = 12;
+    fn nested_count(head: &[u8]) -> usize {
+        head.get(19).map_or(0, |&b| usize::from(b))
+    }
+    fn set_nested(&mut self, bytes: &'a [u8], stride: usize) {
+        self.type2 = ubx::Group::with_stride(bytes, stride).unwrap_or_default();
+    }
+}
+
+impl<'a> MeasEpochType1Entry<'a> {
+    /// Signal number (its low bits; 31 when sig_idx_hi holds it) (bits 0-4 of `signal_type`).
+    pub fn sig_idx_lo(&self) -> u8 {
+        self.signal_type & 0x1f
+    }
+    /// Sets signal number (its low bits; 31 when sig_idx_hi holds it) (the value in its bits of `signal_type`; the other bits stay).
+    pub fn set_sig_idx_lo(&mut self, value: u8) {
+        self.signal_type = (self.signal_type & !0x1f) | (value & 0x1f);
+    }
+    /// Antenna (0 main) (bits 5-7 of `signal_type`).
+    pub fn antenna_id(&self) -> u8 {
+        (self.signal_type >> 5) & 0x7
+    }
+    /// Sets antenna (0 main) (the value in its bits of `signal_type`; the other bits stay).
+    pub fn set_antenna_id(&mut self, value: u8) {
+        self.signal_type = (self.signal_type & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+    /// Pseudorange's most significant bits (each 4294967.296 m: CodeMSB × 4294967.296 + CodeLSB) (bits 0-3 of `misc`).
+    pub fn code_msb(&self) -> u8 {
+        self.misc & 0xf
+    }
+    /// Sets pseudorange's most significant bits (each 4294967.296 m: codemsb × 4294967.296 + codelsb) (the value in its bits of `misc`; the other bits stay).
+    pub fn set_code_msb(&mut self, value: u8) {
+        self.misc = (self.misc & !0xf) | (value & 0xf);
+    }
+    /// Pseudorange's least significant bits [m]: the raw integer divided by 1000.
+    pub fn code_lsb(&self) -> f64 {
+        let raw = self.code_lsb_raw;
+        raw as f64 / 1000.0
+    }
+    /// Doppler (positive for an approaching satellite) [Hz]: the raw integer divided by 10000, or its special value.
+    pub fn doppler(&self) -> ais::Reading<f64> {
+        let raw = self.doppler_raw;
+        ais::scaled(i64::from(raw), 10000.0, 0.0, &[(-2147483648, "do_not_use")])
+    }
+    /// Carrier phase's least significant bits (relative to the pseudorange) [cycle]: the raw integer divided by 1000.
+    pub fn carrier_lsb(&self) -> f64 {
+        let raw = self.carrier_lsb_raw;
+        raw as f64 / 1000.0
+    }
+    /// Carrier phase's most significant bits (each 65.536 cycles), or its special value.
+    pub fn carrier_msb(&self) -> ais::Reading<i64> {
+        let raw = self.carrier_msb_raw;
+        ais::counted(i64::from(raw), 0, &[(-128, "do_not_use")])
+    }
+    /// C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz]: the raw integer divided by 4, or its special value.
+    pub fn cn0(&self) -> ais::Reading<f64> {
+        let raw = self.cn0_raw;
+        ais::scaled(i64::from(raw), 4.0, 0.0, &[(255, "do_not_use")])
+    }
+    /// Time the carrier phase has been tracked without interruption (clipped to 65534 s) [s], or its special value.
+    pub fn lock_time(&self) -> ais::Reading<i64> {
+        let raw = self.lock_time_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// Pseudorange smoothed by the carrier (bit 0 of `obs_info`).
+    pub fn pr_smoothed(&self) -> bool {
+        (self.obs_info & 0x1) != 0
+    }
+    /// Sets pseudorange smoothed by the carrier (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_pr_smoothed(&mut self, value: bool) {
+        self.obs_info = (self.obs_info & !0x1) | u8::from(value);
+    }
+    /// Half-cycle ambiguity not resolved (bit 2 of `obs_info`).
+    pub fn half_cycle_ambiguity(&self) -> bool {
+        ((self.obs_info >> 2) & 0x1) != 0
+    }
+    /// Sets half-cycle ambiguity not resolved (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_half_cycle_ambiguity(&mut self, value: bool) {
+        self.obs_info = (self.obs_info & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Signal number (32 and above, when sig_idx_lo is 31) (bits 3-7 of `obs_info`).
+    pub fn sig_idx_hi(&self) -> u8 {
+        (self.obs_info >> 3) & 0x1f
+    }
+    /// Sets signal number (32 and above, when sig_idx_lo is 31) (the value in its bits of `obs_info`; the other bits stay).
+    pub fn set_sig_idx_hi(&mut self, value: u8) {
+        self.obs_info = (self.obs_info & !(0x1f << 3)) | ((value & 0x1f) << 3);
+    }
+}
+
+/// Measurements of an epoch (MeasEpoch): SBF 4027 rev 1 (id 0x2FBB), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeasEpoch<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// Type-1 sub-blocks.
+    pub n1: u8,
+    /// Bytes of a Type-1 sub-block (its Type-2 sub-blocks not counted) [byte].
+    pub sb1_length: u8,
+    /// Bytes of a Type-2 sub-block [byte].
+    pub sb2_length: u8,
+    /// Flags common to every measurement.
+    pub common_flags: u8,
+    /// Cumulative clock jumps since start-up (modulo 256 ms) [s].
+    pub cum_clk_jumps_raw: u8,
+    /// Reserved.
+    pub reserved: u8,
+    /// Satellites' first signals (Type-1 sub-blocks) (each followed by its type2): 0 to 65535 entries.
+    pub type1: ubx::Nesting<'a, MeasEpochType1Entry<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MeasEpoch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "meas_epoch";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "4027 rev 1";
+    /// The bytes that tell the message: id 0x2FBB.
+    pub const KEY: &'static [u8] = &[0xbb, 0x2f];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// Multipath mitigation on (bit 0 of `common_flags`).
+    pub fn multipath_mitigation(&self) -> bool {
+        (self.common_flags & 0x1) != 0
+    }
+    /// Sets multipath mitigation on (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_multipath_mitigation(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !0x1) | u8::from(value);
+    }
+    /// Code smoothing on (bit 1 of `common_flags`).
+    pub fn code_smoothing(&self) -> bool {
+        ((self.common_flags >> 1) & 0x1) != 0
+    }
+    /// Sets code smoothing on (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_code_smoothing(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Receiver clock steered (bit 3 of `common_flags`).
+    pub fn clock_steering(&self) -> bool {
+        ((self.common_flags >> 3) & 0x1) != 0
+    }
+    /// Sets receiver clock steered (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_clock_steering(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// High-dynamics mode (bit 5 of `common_flags`).
+    pub fn high_dynamics(&self) -> bool {
+        ((self.common_flags >> 5) & 0x1) != 0
+    }
+    /// Sets high-dynamics mode (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_high_dynamics(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Galileo E6B used (E6C otherwise) (bit 6 of `common_flags`).
+    pub fn e6b_used(&self) -> bool {
+        ((self.common_flags >> 6) & 0x1) != 0
+    }
+    /// Sets galileo e6b used (e6c otherwise) (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_e6b_used(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !(0x1 << 6)) | (u8::from(value) << 6);
+    }
+    /// Measurements scrambled (bit 7 of `common_flags`).
+    pub fn scrambling(&self) -> bool {
+        ((self.common_flags >> 7) & 0x1) != 0
+    }
+    /// Sets measurements scrambled (the value in its bits of `common_flags`; the other bits stay).
+    pub fn set_scrambling(&mut self, value: bool) {
+        self.common_flags = (self.common_flags & !(0x1 << 7)) | (u8::from(value) << 7);
+    }
+    /// Cumulative clock jumps since start-up (modulo 256 ms) [s]: the raw integer divided by 1000.
+    pub fn cum_clk_jumps(&self) -> f64 {
+        let raw = self.cum_clk_jumps_raw;
+        raw as f64 / 1000.0
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let n1 = u8::from_le_bytes(r.array("n1")?);
+        let sb1_length = u8::from_le_bytes(r.array("sb1_length")?);
+        let sb2_length = u8::from_le_bytes(r.array("sb2_length")?);
+        let common_flags = u8::from_le_bytes(r.array("common_flags")?);
+        let cum_clk_jumps_raw = u8::from_le_bytes(r.array("cum_clk_jumps")?);
+        let reserved = u8::from_le_bytes(r.array("reserved")?);
+        let type1 = r.group_nesting(
+            usize::from(n1),
+            usize::from(sb1_length),
+            usize::from(sb2_length),
+            "type1",
+            "sb1_length",
+            "type2",
+            "sb2_length",
+        )?;
+        let trailing = r.rest();
+        Ok(Self {
+            tow_raw,
+            wnc_raw,
+            n1,
+            sb1_length,
+            sb2_length,
+            common_flags,
+            cum_clk_jumps_raw,
+            reserved,
+            type1,
+            trailing,
+        })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.n1.to_le_bytes());
+        w.put(&self.sb1_length.to_le_bytes());
+        w.put(&self.sb2_length.to_le_bytes());
+        w.put(&self.common_flags.to_le_bytes());
+        w.put(&self.cum_clk_jumps_raw.to_le_bytes());
+        w.put(&self.reserved.to_le_bytes());
+        self.type1.write_strided(
+            w,
+            (usize::from(self.sb1_length), usize::from(self.sb2_length)),
+            "4027 rev 1",
+            ("sb1_length", "sb2_length"),
+            "type1",
+            "type2",
+        )?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        j.int("n1", self.n1)?;
+        j.int("sb1_length", self.sb1_length)?;
+        j.int("sb2_length", self.sb2_length)?;
+        j.int("common_flags", self.common_flags)?;
+        j.flag("multipath_mitigation", (self.common_flags & 0x1) != 0)?;
+        j.flag("code_smoothing", ((self.common_flags >> 1) & 0x1) != 0)?;
+        j.flag("clock_steering", ((self.common_flags >> 3) & 0x1) != 0)?;
+        j.flag("high_dynamics", ((self.common_flags >> 5) & 0x1) != 0)?;
+        j.flag("e6b_used", ((self.common_flags >> 6) & 0x1) != 0)?;
+        j.flag("scrambling", ((self.common_flags >> 7) & 0x1) != 0)?;
+        ubx::json_float(j, "cum_clk_jumps", self.cum_clk_jumps_raw as f64 / 1000.0)?;
+        j.int("cum_clk_jumps_raw", self.cum_clk_jumps_raw)?;
+        j.int("reserved", self.reserved)?;
+        self.type1.json(j, "type1")?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -4279,8 +5172,12 @@ pub enum Message<'a> {
     PvtGeodetic(PvtGeodetic<'a>),
     /// 4012 rev 0 (output): Satellites above the horizon (SatVisibility).
     SatVisibility(SatVisibility<'a>),
+    /// 4013 rev 0 (output): Status of the tracking channels (ChannelStatus).
+    ChannelStatus(ChannelStatus<'a>),
     /// 4014 rev 1 (output): Receiver status (ReceiverStatus).
     ReceiverStatus(ReceiverStatus<'a>),
+    /// 4027 rev 1 (output): Measurements of an epoch (MeasEpoch).
+    MeasEpoch(MeasEpoch<'a>),
     /// 4043 rev 0 (output): Baselines to the base stations, Cartesian (BaseVectorCart).
     BaseVectorCart(BaseVectorCart<'a>),
     /// 5905 rev 0 (output): Position covariance, Cartesian (PosCovCartesian).
@@ -4312,7 +5209,9 @@ impl<'a> Message<'a> {
             Some([0xa6, 0x4f]) => Message::PvtCartesian(PvtCartesian::read(payload)?),
             Some([0xa7, 0x4f]) => Message::PvtGeodetic(PvtGeodetic::read(payload)?),
             Some([0xac, 0x0f]) => Message::SatVisibility(SatVisibility::read(payload)?),
+            Some([0xad, 0x0f]) => Message::ChannelStatus(ChannelStatus::read(payload)?),
             Some([0xae, 0x2f]) => Message::ReceiverStatus(ReceiverStatus::read(payload)?),
+            Some([0xbb, 0x2f]) => Message::MeasEpoch(MeasEpoch::read(payload)?),
             Some([0xcb, 0x0f]) => Message::BaseVectorCart(BaseVectorCart::read(payload)?),
             Some([0x11, 0x17]) => Message::PosCovCartesian(PosCovCartesian::read(payload)?),
             Some([0x12, 0x17]) => Message::PosCovGeodetic(PosCovGeodetic::read(payload)?),
@@ -4339,7 +5238,9 @@ impl<'a> Message<'a> {
             Message::PvtCartesian(_) => PvtCartesian::ID,
             Message::PvtGeodetic(_) => PvtGeodetic::ID,
             Message::SatVisibility(_) => SatVisibility::ID,
+            Message::ChannelStatus(_) => ChannelStatus::ID,
             Message::ReceiverStatus(_) => ReceiverStatus::ID,
+            Message::MeasEpoch(_) => MeasEpoch::ID,
             Message::BaseVectorCart(_) => BaseVectorCart::ID,
             Message::PosCovCartesian(_) => PosCovCartesian::ID,
             Message::PosCovGeodetic(_) => PosCovGeodetic::ID,
@@ -4360,7 +5261,9 @@ impl<'a> Message<'a> {
             Message::PvtCartesian(_) => PvtCartesian::KEY,
             Message::PvtGeodetic(_) => PvtGeodetic::KEY,
             Message::SatVisibility(_) => SatVisibility::KEY,
+            Message::ChannelStatus(_) => ChannelStatus::KEY,
             Message::ReceiverStatus(_) => ReceiverStatus::KEY,
+            Message::MeasEpoch(_) => MeasEpoch::KEY,
             Message::BaseVectorCart(_) => BaseVectorCart::KEY,
             Message::PosCovCartesian(_) => PosCovCartesian::KEY,
             Message::PosCovGeodetic(_) => PosCovGeodetic::KEY,
@@ -4381,7 +5284,9 @@ impl<'a> Message<'a> {
             Message::PvtCartesian(m) => m.write(w),
             Message::PvtGeodetic(m) => m.write(w),
             Message::SatVisibility(m) => m.write(w),
+            Message::ChannelStatus(m) => m.write(w),
             Message::ReceiverStatus(m) => m.write(w),
+            Message::MeasEpoch(m) => m.write(w),
             Message::BaseVectorCart(m) => m.write(w),
             Message::PosCovCartesian(m) => m.write(w),
             Message::PosCovGeodetic(m) => m.write(w),
@@ -4416,7 +5321,9 @@ impl<'a> Message<'a> {
             Message::PvtCartesian(m) => m.json_members(&mut j)?,
             Message::PvtGeodetic(m) => m.json_members(&mut j)?,
             Message::SatVisibility(m) => m.json_members(&mut j)?,
+            Message::ChannelStatus(m) => m.json_members(&mut j)?,
             Message::ReceiverStatus(m) => m.json_members(&mut j)?,
+            Message::MeasEpoch(m) => m.json_members(&mut j)?,
             Message::BaseVectorCart(m) => m.json_members(&mut j)?,
             Message::PosCovCartesian(m) => m.json_members(&mut j)?,
             Message::PosCovGeodetic(m) => m.json_members(&mut j)?,
