@@ -358,7 +358,8 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
         if "group" in item:
             fields = _payload_items(item["fields"], file, at + ("fields",))
             if "stride" in item:   # an entry of the stride's bytes: the bytes after its fields, as sent
-                fields.append(PayloadField(id=STRIDE_TRAILING, name="Bytes after the entry's fields, as sent", type="bytes",
+                # (before a nested group, whose entries follow the stride's bytes)
+                fields.insert(len(fields) - (1 if fields and isinstance(fields[-1], PayloadGroup) else 0), PayloadField(id=STRIDE_TRAILING, name="Bytes after the entry's fields, as sent", type="bytes",
                                            bits=None, doc="The entry's bytes after its fields, as sent (a newer "
                                            "firmware's additions, the stride's padding)", origin=Origin(file, at + ("stride",))))
             items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]),

@@ -2,7 +2,7 @@
 (checks_payload, rules A002-A007) on each layout, then what binary frames add: where a message
 lives and its class, bitfield parts, counted groups, layouts told apart, documents, replies and
 examples; the keys of a configuration database (spec/binary/<protocol>/config_keys.yaml). Rule ids
-B001-B009 (generator/rules.py)."""
+B001-B010 (generator/rules.py)."""
 
 from __future__ import annotations
 
@@ -104,7 +104,7 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
     """Byte types only, bitfield parts inside their word, counted groups after their count."""
     seen: dict[str, PayloadField] = {}
     for item in layout.items:
-        fields = item.fields if isinstance(item, PayloadGroup) else [item] if isinstance(item, PayloadField) else []
+        fields = item.all_fields if isinstance(item, PayloadGroup) else [item] if isinstance(item, PayloadField) else []
         for f in fields:
             if not f.bit_type.in_bytes:
                 report(f.origin, "B002", f"field {f.id}: {f.type} is a type of bit payloads, not of binary frames",
@@ -134,8 +134,40 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
                        "not field by field", "order")
             if len(item.fields) < 2:
                 report(item.origin, "B003", f"group {item.id}: a stride's entry has at least one field", "fields")
+        if isinstance(item, PayloadGroup):
+            _check_nested(item, seen, report)
         if isinstance(item, PayloadField):
             seen.update({f.id: f for f in (item, *item.parts)})
+
+
+def _check_nested(group: PayloadGroup, seen: dict[str, PayloadField], report: Report) -> None:
+    """B010: a group in a group's entry (SBF's N2 Type-2 sub-blocks after each Type-1 of
+    SB1Length): the last item of an entry of a stride, counted by an unsigned field of that entry,
+    strided by an unsigned field before the outer group; one level only."""
+    inner = [i for i in group.items if isinstance(i, PayloadGroup)]
+    if not inner:
+        return
+    nested = inner[0]
+    if len(inner) > 1 or group.items[-1] is not nested:
+        report(nested.origin, "B010", f"group {nested.id}: a group in an entry of {group.id} is the entry's last "
+               "item, and its only group", "group")
+    if group.stride is None or group.field_major:
+        report(nested.origin, "B010", f"group {nested.id}: a group in an entry needs the entry's bytes: {group.id} "
+               "names a stride (and reads its entries one after the other)", "group")
+    entry = {f.id: f for f in group.fields for f in (f, *f.parts)}
+    count = entry.get(nested.count) if isinstance(nested.count, str) else None
+    if count is None or count.bit_type.name not in ("u1", "u2", "u4", "uint"):
+        report(nested.origin, "B010", f"group {nested.id}: count {nested.count} names no unsigned field of the "
+               f"entry of {group.id} before it", "count")
+    stride = seen.get(nested.stride) if nested.stride is not None else None
+    if stride is None or stride.bit_type.name not in ("u1", "u2", "u4"):
+        report(nested.origin, "B010", f"group {nested.id}: stride {nested.stride} names no unsigned field (u1, u2, "
+               f"u4) before {group.id}", "stride")
+    if len(nested.fields) < 2:
+        report(nested.origin, "B003", f"group {nested.id}: a stride's entry has at least one field", "fields")
+    if nested.nested is not None or nested.field_major or nested.choices:
+        report(nested.origin, "B010", f"group {nested.id}: a nested group's entry holds fields only (no group, "
+               "choice or field-major order)", "fields")
 
 
 def _check_float_specials(f: PayloadField, report: Report) -> None:

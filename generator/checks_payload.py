@@ -122,7 +122,8 @@ def check_items(payload: Payload, report: Report) -> None:
             report(f.origin, "A004", f"id {f.id} is also used at {'.'.join(map(str, ids[f.id].path))}", "id")
         ids.setdefault(f.id, f.origin)
         check_field(f, report)
-    for group in (i for i in payload.items if isinstance(i, PayloadGroup)):
+    groups = [i for i in payload.items if isinstance(i, PayloadGroup)]
+    for group in groups + [g.nested for g in groups if g.nested is not None]:
         entry_ids: set[str] = set()
         for f in group.fields:
             check_field(f, report)
@@ -215,6 +216,11 @@ def _check_entry_choices(payload: Payload, group: PayloadGroup, report: Report) 
     for item in group.items:
         if isinstance(item, PayloadField):
             before.add(item.id)
+            continue
+        if isinstance(item, PayloadGroup):   # a group of the entry (B010)
+            if payload.protocol == "ais":
+                report(item.origin, "A013", f"group {group.id}: group {item.id} in an entry: a binary message's "
+                       "group of a stride only (rule B010)")
             continue
         where = f"group {group.id}: choice {item.id}"
         selector = item.selector

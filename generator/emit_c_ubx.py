@@ -170,8 +170,10 @@ class _Layout:
             self._row(part, pname, "PART_SIGNED" if psigned else "PART", bits, pwidth, low=part.low)
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        # The interpreter reads an entry field by field: no group, optional field or bytes left in it
-        # (but a stride's trailing bytes, its last field: a view of the entry's bytes after its fields).
+        # The interpreter reads an entry field by field: no optional field or bytes left in it (but a
+        # stride's trailing bytes, its last field: a view of the entry's bytes after its fields), and
+        # maybe a nested group after them (rule B010), whose entries of every entry are one array of
+        # the message, each entry's from its index (<nested>_first) on.
         fixed_fields = g.fields[:-1] if g.stride is not None else g.fields
         assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in fixed_fields), g.id
         word = g.id[:-1] if g.id.endswith("s") else g.id + "_entry"
@@ -179,7 +181,6 @@ class _Layout:
                         self.big)
         assert not entry.entries, f"{self.struct}.{g.id}: a group in a group"
         entry.doc = f"One entry of {g.name.lower()} ({g.id})."
-        self.entries.append(entry)
         name = self._name(member(g.id))
         count_name = self._name(f"{name}_count")
         entry_bytes = g.entry_width // 8
@@ -195,6 +196,10 @@ class _Layout:
             count_member, bits = self.counters[g.count]
             count_kind, count_offset = "FIELD", f"offsetof({self.struct}, {member(g.count)})"
             natural = min(natural, (1 << bits) - 1)
+        nested = "NULL, NULL, 0, 0"
+        if g.nested is not None:
+            nested = self._nested(g, entry, natural)
+        self.entries.append(entry)
         define = f"NMEA_UBX_{self.upper}_{g.id.upper()}_MAX"
         self.defines += [f"#ifndef {define}",
                          f"#define {define} ({natural} < NMEA_UBX_MAX_ENTRIES ? {natural} : NMEA_UBX_MAX_ENTRIES)",
@@ -206,10 +211,44 @@ class _Layout:
             f"static const nmea_ubx_group {table} = {{{entry.prefix}_items, {len(entry.rows)}, NMEA_UBX_COUNT_{count_kind}, "
             f"{count_member}, {count_offset}, {count}, {g.min}, {g.max}, {define}, {entry_bytes}, sizeof({entry.struct}), "
             f"{after(following) // 8}, offsetof({self.struct}, {count_name}), "
-            + (f"{self.counters[g.stride][0]}, offsetof({self.struct}, {member(g.stride)}), {_c_str(g.stride)}}};"
-               if g.stride else "0, 0, NULL};"))
+            + (f"{self.counters[g.stride][0]}, offsetof({self.struct}, {member(g.stride)}), {_c_str(g.stride)}, "
+               if g.stride else "0, 0, NULL, ") + f"{nested}}};")
         self.rows.append(self.row(g.id, f"&{table}", f"offsetof({self.struct}, {name})", "0", 0, "GROUP", 0, 0, 0,
                                   "NUMBER", False))
+
+    def _nested(self, g: PayloadGroup, entry: _Layout, outer: int) -> str:
+        """The group each entry of `g` ends with: its entries' struct, the message's one array of them
+        (of `outer` entries by default, as many as the outer group's: one each when that is full; a
+        build may set NMEA_UBX_<LAYOUT>_<GROUP>_MAX), its descriptor; the outer descriptor's last
+        members (nested, nested_id, nested_offset, nested_first)."""
+        n = g.nested
+        assert n is not None and isinstance(n.count, str) and n.nested is None
+        word = n.id[:-1] if n.id.endswith("s") else n.id + "_entry"
+        inner = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(n.fields), f"{self.upper}_{word.upper()}",
+                        self.big)
+        inner.doc = f"One entry of {n.name.lower()} ({n.id}; every entry of {g.id}'s in one array)."
+        self.entries.append(inner)
+        name = self._name(member(n.id))
+        count_name = self._name(f"{name}_count")
+        first = entry._name(f"{name}_first")
+        entry.members.append(f"uint16_t {first}; /* the index in {name} of its first entry "
+                             f"({member(n.count)} of them) */")
+        define = f"NMEA_UBX_{self.upper}_{n.id.upper()}_MAX"
+        self.defines += [f"#ifndef {define}",
+                         f"#define {define} ({outer} < NMEA_UBX_MAX_ENTRIES ? {outer} : NMEA_UBX_MAX_ENTRIES)",
+                         "#endif"]
+        self.members.append(f"uint16_t {count_name}; /* the entries of {name}, every {g.id} entry's */")
+        self.arrays.append(f"{inner.struct} {name}[{define}]; /* {n.name}: those of {g.id}[k] from its {first} on */")
+        count_member, _ = entry.counters[n.count]
+        assert n.stride is not None   # rule B010
+        stride = f"{self.counters[n.stride][0]}, offsetof({self.struct}, {member(n.stride)}), {_c_str(n.stride)}"
+        table = f"{self.prefix}_{n.id}_group"
+        self.tables.append(
+            f"static const nmea_ubx_group {table} = {{{inner.prefix}_items, {len(inner.rows)}, NMEA_UBX_COUNT_FIELD, "
+            f"{count_member}, offsetof({entry.struct}, {member(n.count)}), 0, {n.min}, {n.max}, {define}, "
+            f"{n.entry_width // 8}, sizeof({inner.struct}), 0, offsetof({self.struct}, {count_name}), {stride}, "
+            "NULL, NULL, 0, 0};")
+        return f"&{table}, {_c_str(n.id)}, offsetof({self.struct}, {name}), offsetof({entry.struct}, {first})"
 
     def typedef(self, doc: str, trailing: bool) -> str:
         members = list(self.members)
@@ -539,6 +578,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                    kept=[k for k in (_kept(p) for p in protocols) if k],
                    enums=[enum_table(enums[key]) for key in sorted(enums)],
                    runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),
+                   nested=any(isinstance(g, PayloadGroup) and g.nested is not None
+                              for m in messages for lay in m.layouts for g in lay.items),
                    runtime_c=runtime_source("ubx.c"))
     return {
         "c/nmea_ubx.h": env.get_template("c/nmea_ubx.h.j2").render(

@@ -141,6 +141,12 @@ def binary_rows(layout: Payload) -> list[dict]:
                 step = f"`{item.stride}`" if item.stride is not None else str(item.entry_width // 8)
                 row(f, f"{start}{at // 8} + {step}·k", f"{item.id}[k].")
                 at += f.bits or 0
+            if item.nested is not None:   # after each entry's stride bytes, its own entries (rule B010)
+                inner, at = item.nested, 0
+                for f in inner.fields:
+                    row(f, f"after {item.id}[k]'s `{item.stride}`: {at // 8} + `{inner.stride}`·j",
+                        f"{item.id}[k].{inner.id}[j].")
+                    at += f.bits or 0
     return out
 
 

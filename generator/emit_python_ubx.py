@@ -58,8 +58,16 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
             count = str(item.count) if item.count is not None else f"{item.min} to {item.max}"   # 6, num_svs
             members.append({"line": f"{item.id}: list[{name}] = field(default_factory=list)",
                             "doc": docstring(f"{item.name}: {count} entries.", 4)})
+            nested = item.nested
+            inner = []
+            if nested is not None:   # the group each entry ends with: a class of its own, a list of them
+                inner_name = entry_class(layout, nested)
+                entries.append({"class": inner_name, "doc": docstring(f"One entry of {nested.name.lower()}.", 4),
+                                "members": _members(nested.fields)})
+                inner = [{"line": f"{nested.id}: list[{inner_name}] = field(default_factory=list)",
+                          "doc": docstring(f"{nested.name}: {nested.count} entries.", 4)}]
             entries.append({"class": name, "doc": docstring(f"One entry of {item.name.lower()}.", 4),
-                            "members": _members(item.fields)})
+                            "members": _members(item.fields) + inner})
         else:
             members += _members([item])
     doc = [*textwrap.wrap(title(message, layout), WIDTH - 7), "",
@@ -74,8 +82,9 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
         "acknowledges": "({!r}, {!r})".format(*layout.acknowledges).replace("'", '"') if layout.acknowledges
         else "None",
         "descriptor": layout_lines(layout, layout.items, [], 8),
-        "raws": [{"name": f.id, "doc": docstring(f"The raw integer of {f.id}.", 8)}
-                 for f in layout.fields if f.scaled],
+        # (a field of a group's entry and of its nested group's: one property, of the first)
+        "raws": [{"name": name, "doc": docstring(f"The raw integer of {name}.", 8)}
+                 for name in dict.fromkeys(f.id for f in layout.fields if f.scaled)],
     }
 
 

@@ -108,7 +108,8 @@ def _part_value(p: PayloadField, word: str, word_type: str) -> str:
     if p.type == "int":   # sign-extended from its top bit
         unsigned = _int_type(width)
         shift = int(kind[1:]) - width
-        return f"(({raw} as {unsigned} as {kind}) << {shift}) >> {shift}" if shift else f"{raw} as {kind}"
+        narrowed = raw if unsigned == word_type else f"{raw} as {unsigned}"   # (a u8 word's part: no cast to u8)
+        return f"(({narrowed} as {kind}) << {shift}) >> {shift}" if shift else f"{raw} as {kind}"
     return raw[1:-1] if kind == word_type else f"{raw} as {kind}"
 
 
@@ -139,6 +140,7 @@ class _Record:
         # member, its integer or float type, "" for characters or bytes, its bytes, key): a run read
         # after one length check, as one array, `fixed`.
         self.run: list[tuple[str, str, str, int, str]] = []
+        self.trait: list[str] = []   # an entry's items of the Entry trait besides its own (a nested group's)
         for i, item in enumerate(items):
             if isinstance(item, PayloadGroup):
                 self._end_run()
@@ -324,6 +326,9 @@ class _Record:
 
     def _group(self, g: PayloadGroup, following: list) -> None:
         entry = _Record(self.entry_names[g.id], g.fields, self.address, order=self.order)
+        if g.nested is not None:
+            self._nesting(g, entry)
+            return
         self.entries.append(entry)
         key, name = rust_str(g.id), ident(g.id)
         lifetime = "<'a>" if entry.borrows else ""
@@ -348,6 +353,61 @@ class _Record:
         else:
             self.read.append(f"let {name} = r.group({count}, {g.min}, {g.max}, {after(following) // 8}, {key})?;")
             self.write.append(f"self.{name}.write(w);")
+        self.inits.append(name)
+        self.json.append(f"self.{name}.json(j, {key})?;")
+
+
+    def _usize(self, field: str, prefix: str = "") -> str:
+        """The expression of field `field`'s value as a usize (`prefix`: self. for the writer)."""
+        value, kind = self.values[field]
+        return f"usize::from({prefix}{value})" if kind in ("u8", "u16") else f"({prefix}{value}) as usize"
+
+    def _nesting(self, g: PayloadGroup, entry: _Record) -> None:
+        """A group whose entries end with a group of their own (rule B010: SBF's Type-1 sub-blocks
+        and their Type-2): a ubx::Nesting of the entries, each entry's group a ubx::Group set as the
+        Nesting reads it (Entry::set_nested), its count read from the entry's bytes (nested_count)."""
+        n = g.nested
+        assert n is not None and isinstance(n.count, str) and isinstance(g.count, (str, int)) and g.stride
+        inner = _Record(self.entry_names[n.id], n.fields, self.address, order=self.order)
+        self.entries += [inner, entry]
+        nested, lifetime = ident(n.id), "<'a>" if inner.borrows else ""
+        entry.members.append(f"/// {n.name}: {n.count} entries.\npub {nested}: ubx::Group<'a, {inner.name}{lifetime}>,")
+        entry.read.append(f"let {nested} = ubx::Group::default();")
+        entry.inits.append(nested)
+        entry.json.append(f"self.{nested}.json(j, {rust_str(n.id)})?;")
+        entry.borrows, entry.plain = True, None
+        at = 0
+        for f in g.fields:   # the count's bytes in the entry
+            if f.id == n.count:
+                break
+            at += (f.bits or 0) // 8
+        count = next(f for f in g.fields if f.id == n.count)
+        width = (count.bits or 0) // 8
+        order = "le" if self.order == "le" else "be"
+        if width == 1:
+            read = f"head.get({at}).map_or(0, |&b| usize::from(b))"
+        elif width == 2:
+            read = f"head.get({at}..{at + 2}).map_or(0, |b| usize::from(u16::from_{order}_bytes([b[0], b[1]])))"
+        else:
+            raise NotImplementedError(f"{n.origin.file}: {n.id}: a nested group counted by a {count.type} has no Rust code yet")
+        entry.trait += [f"const NESTED_WIDTH: usize = {inner.width};",
+                        f"fn nested_count(head: &[u8]) -> usize {{ {read} }}",
+                        f"fn set_nested(&mut self, bytes: &'a [u8], stride: usize) {{ self.{nested} = "
+                        "ubx::Group::with_stride(bytes, stride).unwrap_or_default(); }"]
+        key, name = rust_str(g.id), ident(g.id)
+        self.borrows = True
+        if self.optional:
+            raise NotImplementedError(f"{g.origin.file}: {g.id}: a group after an optional field has no Rust code yet")
+        self.members.append(f"/// {g.name} (each followed by its {n.id}): {g.min} to {g.max} entries.\n"
+                            f"pub {name}: ubx::Nesting<'a, {entry.name}<'a>>,")
+        count_of = f"{g.count}" if isinstance(g.count, int) else self._usize(g.count)
+        assert n.stride is not None   # rule B010
+        strides = self._usize(g.stride), self._usize(n.stride)
+        self.read.append(f"let {name} = r.group_nesting({count_of}, {strides[0]}, {strides[1]}, {key}, "
+                         f"{rust_str(g.stride)}, {rust_str(n.id)}, {rust_str(n.stride)})?;")
+        written = self._usize(g.stride, "self."), self._usize(n.stride, "self.")
+        self.write.append(f"self.{name}.write_strided(w, ({written[0]}, {written[1]}), {rust_str(self.address)}, "
+                          f"({rust_str(g.stride)}, {rust_str(n.stride)}), {key}, {rust_str(n.id)})?;")
         self.inits.append(name)
         self.json.append(f"self.{name}.json(j, {key})?;")
 
@@ -420,7 +480,7 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
                 f"fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {{ {' '.join(reads)} Ok(Self {{ {init} }}) }}",
                 f"fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {{ {write_body} Ok(()) }}",
                 "fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {"
-                + " ".join(record.json) + " Ok(()) }", "}", ""]
+                + " ".join(record.json) + " Ok(()) }", *record.trait, "}", ""]
         if record.accessors:
             out += [f"impl{lifetime} {record.name}{lifetime} {{", *record.accessors, "}", ""]
         return "\n".join(out)
@@ -510,7 +570,8 @@ def _blocks(spec: Spec, messages: list[BinaryMessage]) -> tuple[list[str], list[
     for message in messages:
         order = "be" if message.byte_order == "big" else "le"
         for layout in message.layouts:
-            names = {g.id: entry_class(layout, g) for g in layout.items if isinstance(g, PayloadGroup)}
+            names = {n.id: entry_class(layout, n) for g in layout.items if isinstance(g, PayloadGroup)
+                     for n in (g, g.nested) if n is not None}
             record = _Record(layout.camel, layout.items, message.address, names, order=order)
             for entry in record.entries:
                 blocks.append(record_code(entry, None, None))

@@ -398,7 +398,8 @@ def rtcm3_vectors(spec: Spec) -> list[dict]:
 
 # Frames of the other protocols every decoder must read as the reference decoder does, or refuse
 # with the same kind of error: (protocol, frame hex, what it shows). SBF's sub-blocks, whose bytes
-# (SBLength) a newer firmware may make longer than the layout's fields.
+# (SBLength) a newer firmware may make longer than the layout's fields, and MeasEpoch's sub-blocks
+# of sub-blocks.
 BINARY_CASES = (
     ("sbf", "24 40 15 cd ac 0f 24 00 e0 52 c9 1c 3f 09 02 0a 03 00 29 1a 96 21 00 02 aa bb 04 00 ab 43 c6 0c 01 01 cc dd",
      "a SatVisibility of two SatInfo sub-blocks of 10 bytes: the 2 after the fields kept as each one's trailing"),
@@ -408,6 +409,15 @@ BINARY_CASES = (
      "a SatVisibility whose N says 3 sub-blocks of 8 bytes, the block holding 2"),
     ("sbf", "24 40 b4 f2 ac 0f 14 00 e0 52 c9 1c 3f 09 00 00 00 00 00 00",
      "a SatVisibility of no sub-block and an SBLength of 0 (the stride of no entry says nothing), padding kept"),
+    # MeasEpoch: Type-1 sub-blocks (SB1Length) each followed by its N2 Type-2 sub-blocks (SB2Length)
+    ("sbf", "24 40 85 fe bb 2f 5c 00 68 a2 bf 1c 3f 09 02 16 0e 01 0c 00 01 00 11 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 02 aa bb 02 28 96 f7 ff 01 e8 fd 2c 01 39 30 cc dd 02 28 96 f7 ff 01 e8 fd 2c 01 39 30 ee ff 02 00 05 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 00 11 22",
+     "a MeasEpoch of two Type-1 sub-blocks of 22 bytes (the first followed by two Type-2 of 14, the second by none): the 2 bytes after each one's fields kept as its trailing, at both levels"),
+    ("sbf", "24 40 c9 8c bb 2f 30 00 68 a2 bf 1c 3f 09 01 14 08 01 0c 00 01 00 11 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 01 02 28 96 f7 ff 01 e8 fd",
+     "a MeasEpoch whose SB2Length (8) is shorter than a Type-2 sub-block's fields (12): refused"),
+    ("sbf", "24 40 1a 40 bb 2f 34 00 68 a2 bf 1c 3f 09 01 14 0c 01 0c 00 01 00 11 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 03 02 28 96 f7 ff 01 e8 fd 2c 01 39 30",
+     "a MeasEpoch whose Type-1 sub-block says 3 Type-2 sub-blocks of 12 bytes, the block holding 1"),
+    ("sbf", "24 40 62 c3 bb 2f 40 00 68 a2 bf 1c 3f 09 02 14 0c 01 0c 00 01 00 11 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 02 02 28 96 f7 ff 01 e8 fd 2c 01 39 30 02 28 96 f7 ff 01 e8 fd 2c 01 39 30",
+     "a MeasEpoch of N1 2 whose first Type-1's two Type-2 sub-blocks leave no bytes for the second Type-1"),
 )
 
 

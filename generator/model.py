@@ -740,7 +740,8 @@ class PayloadGroup:
     doc: str
     min: int
     max: int
-    items: list[PayloadField | PayloadChoice]   # an entry's fields, and choices by a field of the entry
+    items: list[PayloadField | PayloadChoice | PayloadGroup]   # an entry's fields, choices by a field of the
+                                 # entry, and last a nested group (SBF's Type-2 sub-blocks: rule B010)
     origin: Origin
     count: Count | None = None
     offset: int | None = None
@@ -751,8 +752,21 @@ class PayloadGroup:
 
     @property
     def fields(self) -> list[PayloadField]:
-        """An entry's fields, those of every case of its choices included, in order."""
-        return flat_fields(self.items)
+        """An entry's fields, those of every case of its choices included, in order (not those
+        of its nested group's entries)."""
+        return flat_fields([i for i in self.items if not isinstance(i, PayloadGroup)])
+
+    @property
+    def nested(self) -> PayloadGroup | None:
+        """The group each entry ends with (SBF's Type-2 sub-blocks after a Type-1): counted by a
+        field of the entry, strided by a field of the message; None for most."""
+        return next((i for i in self.items if isinstance(i, PayloadGroup)), None)
+
+    @property
+    def all_fields(self) -> list[PayloadField]:
+        """An entry's fields, then its nested group's."""
+        nested = self.nested
+        return self.fields + (nested.all_fields if nested is not None else [])
 
     @property
     def choices(self) -> list[PayloadChoice]:
@@ -763,11 +777,13 @@ class PayloadGroup:
     def entry_width(self) -> int:
         """An entry's bits: its fields' (a choice's: those of its first case; rule A013 makes every
         case as wide; a stride's entry: the least it takes, its trailing bytes left out)."""
-        return sum((i.bits or 0) if isinstance(i, PayloadField) else (i.cases[0].width or 0) for i in self.items)
+        return sum((i.bits or 0) if isinstance(i, PayloadField) else (i.cases[0].width or 0) for i in self.items
+                   if not isinstance(i, PayloadGroup))
 
     @property
     def width(self) -> int | None:
-        return self.entry_width * self.count if isinstance(self.count, int) and self.stride is None else None
+        return self.entry_width * self.count if isinstance(self.count, int) and self.stride is None \
+            and self.nested is None else None
 
     @property
     def camel(self) -> str:
@@ -828,7 +844,8 @@ def flat_fields(items: list[PayloadItem] | list[PayloadField | PayloadChoice]) -
     """Every field of `items`, those of groups and of every case of choices included, in order."""
     out: list[PayloadField] = []
     for item in items:
-        out += [item] if isinstance(item, PayloadField) else item.fields
+        out += [item] if isinstance(item, PayloadField) else item.all_fields if isinstance(item, PayloadGroup) \
+            else item.fields
     return out
 
 

@@ -108,10 +108,13 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any], start: int =
     return True
 
 
-def _strided(item: PayloadGroup, bits: Any, following: list, out: dict[str, Any]) -> None:
+def _strided(item: PayloadGroup, bits: Any, following: list, out: dict[str, Any],
+             block: dict[str, Any] | None = None) -> None:
     """A group whose entries are as many bytes as its `stride` field says: each entry's fields
-    read from a cursor over its own bytes (the last, `trailing`, takes what they leave)."""
-    stride = out[str(item.stride)]
+    read from a cursor over its own bytes (the last, `trailing`, takes what they leave), then the
+    entries of the group it ends with, if any (counted by the entry, strided by `block`, the
+    message's values)."""
+    stride = (out if block is None else block)[str(item.stride)]
     count = 1 if item.count is None else item.count if isinstance(item.count, int) else out[str(item.count)]
     if count and 8 * stride < item.entry_width:
         raise PayloadError("bad_value", f"{bits.payload.id}: {item.stride} {stride} is less than the "
@@ -121,9 +124,13 @@ def _strided(item: PayloadGroup, bits: Any, following: list, out: dict[str, Any]
     if count < item.min or 8 * count * stride > bits.left:
         raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")
     entries = []
-    for _ in range(count):
+    for k in range(count):
+        if 8 * stride > bits.left:   # (after a nested group's entries: the next entry cut)
+            raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {count - k} more entries")
         entry: dict[str, Any] = {}
         _items(item.fields, bits.within(8 * stride), [], entry)
+        if item.nested is not None:
+            _strided(item.nested, bits, [], entry, out if block is None else block)
         entries.append(entry)
     out[item.id] = entries
 

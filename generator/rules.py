@@ -288,6 +288,11 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "A key's `enum` is one of the file's enums, on an E or U type, whose values fit the type; a `scale` is on "
          "a number type (U, I, R) and is 1 over a whole number; a group's `documents` are its protocol.yaml's.",
          "Correct the enum, the scale or the document id."),
+    Rule("B010", "a group in a group's entry is counted by the entry",
+         "A group may end the entry of a group of a `stride` (SBF's Type-2 sub-blocks after each Type-1): it is "
+         "the entry's last item, its `count` names an unsigned field of that entry, its `stride` an unsigned field "
+         "(u1, u2, u4) before the outer group; its own entries hold fields only (one level).",
+         "Move the group to the end of the entry, correct `count` or `stride`, or give the outer group a stride."),
 )}
 
 

@@ -105,9 +105,11 @@
 //   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
 //   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
 //   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
-//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
-//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
-//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/meas_extra.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/sat_visibility.yaml, spec/binary/sbf/messages/channel_status.yaml,
+//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/meas_epoch.yaml,
+//   spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
@@ -134,7 +136,7 @@
 //   spec/binary/unicore/messages/bestnav_b.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
 //   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_pos_type.yaml,
-//   spec/enums/unicore_sol_status.yaml (digest 21ecd31e26fbd35e)
+//   spec/enums/unicore_sol_status.yaml (digest b9614870f98af1e5)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -448,17 +450,99 @@ static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, u
     return true;
 }
 
-/* Reads a layout's `items` into the struct at `m`, a group's entries field by field (a group
-   holds no group: the reader does not recurse). False with the error set. */
+/* Reads the entries of group `g` (the item `id`) into the array at `array` from its index `done`
+   on, and stores their number at `*read`: `owner` holds the member its count names (the message,
+   or the entry whose nested group it is), `m` the message (its stride, the nested group's array).
+   An entry's fields are read within its stride's bytes (a stride's last item, a view, takes those
+   after the fields), then the entries of its nested group, if any (the reader recurses that once:
+   a nested group holds fields only, rule B010). False with the error set. */
+static bool ubx_read_group(ubx_reader *r, const char *id, const nmea_ubx_group *g, uint8_t *m, const uint8_t *owner,
+                           uint8_t *array, size_t done, size_t *read)
+{
+    size_t left = r->len - r->pos, count, stride, len = r->len, k, f, nested = 0;
+    /* a stride (SBF's SBLength): each entry is that many bytes, at least its fields' */
+    stride = g->stride_member ? (size_t)ubx_get(m + g->stride_offset, g->stride_member, false) : g->entry_bytes;
+    count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
+            : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(owner + g->count_offset, g->count_member, false)
+                                                    : 1; /* counted below, the stride checked first */
+    if (count && stride < g->entry_bytes) { /* (the stride of no entry says nothing) */
+        snprintf(r->err->text, sizeof r->err->text, "%s is %lu, an entry of %s takes at least %u bytes", g->stride_id,
+                 (unsigned long)stride, id, (unsigned)g->entry_bytes);
+        return ubx_fail(r->err, NMEA_UBX_BAD_VALUE, r->address, g->stride_id);
+    }
+    if (g->count_kind == NMEA_UBX_COUNT_LEFT) {
+        count = left > g->after ? (left - g->after) / stride : 0;
+        if (count > g->limit)
+            count = g->limit;
+    }
+    if (count < g->min || count * stride > left) {
+        /* as Python says it: a group of the bytes left needs at least its least */
+        bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
+        snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %lu bits, %lu bits left", id,
+                 at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count), 8ul * (unsigned long)stride,
+                 8ul * (unsigned long)left);
+        return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, id);
+    }
+    if (count > g->max - done) {
+        snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)", id,
+                 (unsigned long)(done + count), (unsigned)g->max);
+        return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, id);
+    }
+    memset(array + done * g->entry_size, 0, count * g->entry_size);
+    for (k = 0; k < count; k++) {
+        uint64_t entry_word = 0;
+        bool ignored = false;
+        uint8_t *entry = array + (done + k) * g->entry_size;
+        size_t end = r->pos + stride;
+        if (stride > len - r->pos) { /* (after a nested group's entries: the next entry cut) */
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %lu bits, %lu bits left", id,
+                     (unsigned long)(count - k), 8ul * (unsigned long)stride, 8ul * (unsigned long)(len - r->pos));
+            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, id);
+        }
+        r->len = end; /* the entry's bytes */
+        for (f = 0; f < g->n_items; f++) {
+            if (UBX_IS_PART(&g->items[f]))
+                ubx_read_part(&g->items[f], entry, entry_word);
+            else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored)) {
+                r->len = len;
+                return false;
+            }
+        }
+        r->len = len;
+        r->pos = end;
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) { /* its own entries, after its bytes, in the message's array of them */
+            size_t got = 0;
+            uint16_t first = (uint16_t)nested;
+            memcpy(entry + g->nested_first, &first, sizeof first);
+            if (!ubx_read_group(r, g->nested_id, g->nested, m, entry, m + g->nested_offset, nested, &got))
+                return false;
+            nested += got;
+        }
+#endif
+    }
+#ifdef NMEA_UBX_NESTED
+    if (g->nested) {
+        uint16_t stored = (uint16_t)nested;
+        memcpy(m + g->nested->n_offset, &stored, sizeof stored);
+    }
+#endif
+    (void)nested;
+    *read = count;
+    return true;
+}
+
+/* Reads a layout's `items` into the struct at `m`, a group's entries field by field. False with
+   the error set. */
 static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, uint8_t *m)
 {
     uint64_t word = 0;
     bool done = false;
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n && !done; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-        size_t left = r->len - r->pos, count, stride, len = r->len;
+        size_t count = 0;
         uint16_t stored;
         if (UBX_IS_PART(it)) {
             ubx_read_part(it, m, word);
@@ -469,52 +553,8 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                 return false;
             continue;
         }
-        /* a stride (SBF's SBLength): each entry is that many bytes, at least its fields' */
-        stride = g->stride_member ? (size_t)ubx_get(m + g->stride_offset, g->stride_member, false) : g->entry_bytes;
-        count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
-                : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
-                                                        : 1; /* counted below, the stride checked first */
-        if (count && stride < g->entry_bytes) { /* (the stride of no entry says nothing) */
-            snprintf(r->err->text, sizeof r->err->text, "%s is %lu, an entry of %s takes at least %u bytes",
-                     g->stride_id, (unsigned long)stride, it->id, (unsigned)g->entry_bytes);
-            return ubx_fail(r->err, NMEA_UBX_BAD_VALUE, r->address, g->stride_id);
-        }
-        if (g->count_kind == NMEA_UBX_COUNT_LEFT) {
-            count = left > g->after ? (left - g->after) / stride : 0;
-            if (count > g->limit)
-                count = g->limit;
-        }
-        if (count < g->min || count * stride > left) {
-            /* as Python says it: a group of the bytes left needs at least its least */
-            bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
-            snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %lu bits, %lu bits left", it->id,
-                     at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count),
-                     8ul * (unsigned long)stride, 8ul * (unsigned long)left);
-            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
-        }
-        if (count > g->max) {
-            snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)",
-                     it->id, (unsigned long)count, (unsigned)g->max);
-            return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
-        }
-        memset(m + it->offset, 0, count * g->entry_size);
-        for (k = 0; k < count; k++) {
-            uint64_t entry_word = 0;
-            bool ignored = false;
-            uint8_t *entry = m + it->offset + k * g->entry_size;
-            size_t end = r->pos + stride;
-            r->len = end; /* the entry's bytes: a stride's last item, a view, takes those after its fields */
-            for (f = 0; f < g->n_items; f++) {
-                if (UBX_IS_PART(&g->items[f]))
-                    ubx_read_part(&g->items[f], entry, entry_word);
-                else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored)) {
-                    r->len = len;
-                    return false;
-                }
-            }
-            r->len = len;
-            r->pos = end;
-        }
+        if (!ubx_read_group(r, it->id, g, m, m, m + it->offset, 0, &count))
+            return false;
         stored = (uint16_t)count;
         memcpy(m + g->n_offset, &stored, sizeof stored);
     }
@@ -618,11 +658,58 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
     }
 }
 
+/* Writes the entries `first` to `first + count - 1` of group `g` (the item `id`) of the array at
+   `array` (`m`: the message): each entry's fields, of as many bytes as its stride says, then the
+   entries of its nested group, if any (those its index and count member say, within the message's
+   array of them). */
+static bool ubx_write_group(ubx_writer *w, const char *id, const nmea_ubx_group *g, const uint8_t *m,
+                            const uint8_t *array, size_t first, size_t count)
+{
+    size_t k, f;
+    if (first + count > g->max) {
+        snprintf(w->err->text, sizeof w->err->text, "%s has %lu entries, its array holds %u", id,
+                 (unsigned long)(first + count), (unsigned)g->max);
+        return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, id);
+    }
+    for (k = first; k < first + count; k++) {
+        const uint8_t *entry = array + k * g->entry_size;
+        size_t start = w->len;
+        for (f = 0; f < g->n_items; f++)
+            if (!ubx_write_field(w, g->items, g->n_items, f, entry))
+                return false;
+        if (g->stride_member) { /* an entry of as many bytes as its stride says */
+            uint64_t stride = ubx_get(m + g->stride_offset, g->stride_member, false);
+            if (w->len - start != stride) {
+                snprintf(w->err->text, sizeof w->err->text, "%s takes the bytes of each entry of %s (%lu), not %lu",
+                         g->stride_id, id, (unsigned long)(w->len - start), (unsigned long)stride);
+                return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->stride_id);
+            }
+        }
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) { /* its own entries: from its index on, as many as its count member says */
+            const nmea_ubx_group *in = g->nested;
+            uint16_t from, total;
+            size_t n = (size_t)ubx_get(entry + in->count_offset, in->count_member, false);
+            memcpy(&from, entry + g->nested_first, sizeof from);
+            memcpy(&total, m + in->n_offset, sizeof total);
+            if ((size_t)from + n > total || total > in->max) {
+                snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, an entry of %s names %lu from %u",
+                         g->nested_id, (unsigned)total, id, (unsigned long)n, (unsigned)from);
+                return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->nested_id);
+            }
+            if (!ubx_write_group(w, g->nested_id, in, m, m + g->nested_offset, from, n))
+                return false;
+        }
+#endif
+    }
+    return true;
+}
+
 /* Writes a layout's `items` of the struct at `m`, a group's entries field by field; stops at an
    optional field whose flag is false. */
 static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n, const uint8_t *m)
 {
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
@@ -635,25 +722,8 @@ static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n,
             continue;
         }
         memcpy(&count, m + g->n_offset, sizeof count);
-        if (count > g->max) {
-            snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, its array holds %u", it->id, (unsigned)count,
-                     (unsigned)g->max);
-            return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
-        }
-        for (k = 0; k < count; k++) {
-            size_t start = w->len;
-            for (f = 0; f < g->n_items; f++)
-                if (!ubx_write_field(w, g->items, g->n_items, f, m + it->offset + k * g->entry_size))
-                    return false;
-            if (g->stride_member) { /* an entry of as many bytes as its stride says */
-                uint64_t stride = ubx_get(m + g->stride_offset, g->stride_member, false);
-                if (w->len - start != stride) {
-                    snprintf(w->err->text, sizeof w->err->text, "%s takes the bytes of each entry of %s (%lu), not %lu",
-                             g->stride_id, it->id, (unsigned long)(w->len - start), (unsigned long)stride);
-                    return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->stride_id);
-                }
-            }
-        }
+        if (!ubx_write_group(w, it->id, g, m, m + it->offset, 0, count))
+            return false;
     }
     return true;
 }
@@ -958,11 +1028,43 @@ static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8
     }
 }
 
+/* The JSON member `id` of the entries `first` to `first + count - 1` of group `g` of the array at
+   `array` (`m`: the message): an array of objects, an entry's fields then its nested group's
+   entries (those its index and count member say; a count past the array's stops at its end). */
+static void ubx_json_group(ubx_json_out *j, const char *id, const nmea_ubx_group *g, const uint8_t *m,
+                           const uint8_t *array, size_t first, size_t count)
+{
+    size_t k, f;
+    (void)m; /* (a nested group's array) */
+    ubx_json_key(j, id);
+    ubx_json_puts(j, "[");
+    for (k = first; k < first + count && k < g->max; k++) {
+        const uint8_t *entry = array + k * g->entry_size;
+        ubx_json_puts(j, k > first ? ",{" : "{");
+        j->empty = true;
+        for (f = 0; f < g->n_items; f++)
+            ubx_json_field(j, &g->items[f], entry);
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) {
+            uint16_t from, total;
+            size_t n = (size_t)ubx_get(entry + g->nested->count_offset, g->nested->count_member, false);
+            memcpy(&from, entry + g->nested_first, sizeof from);
+            memcpy(&total, m + g->nested->n_offset, sizeof total);
+            ubx_json_group(j, g->nested_id, g->nested, m, m + g->nested_offset, from,
+                           from >= total ? 0 : n < (size_t)(total - from) ? n : (size_t)(total - from));
+        }
+#endif
+        ubx_json_puts(j, "}");
+    }
+    ubx_json_puts(j, "]");
+    j->empty = false;
+}
+
 /* The JSON members of a layout's `items` of the struct at `m` (those of
    generated/vectors/ubx.jsonl), a group's entries field by field. */
 static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n, const uint8_t *m)
 {
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
@@ -974,17 +1076,7 @@ static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n
             continue;
         }
         memcpy(&count, m + g->n_offset, sizeof count);
-        ubx_json_key(j, it->id);
-        ubx_json_puts(j, "[");
-        for (k = 0; k < count; k++) {
-            ubx_json_puts(j, k ? ",{" : "{");
-            j->empty = true;
-            for (f = 0; f < g->n_items; f++)
-                ubx_json_field(j, &g->items[f], m + it->offset + k * g->entry_size);
-            ubx_json_puts(j, "}");
-        }
-        ubx_json_puts(j, "]");
-        j->empty = false;
+        ubx_json_group(j, it->id, g, m, m + it->offset, 0, count);
     }
 }
 
@@ -1802,7 +1894,7 @@ static const nmea_ubx_item ubx_nav_svinfo_channel_items[] = {
     {"pr_res", NULL, offsetof(nmea_ubx_nav_svinfo_channel, pr_res), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_svinfo_channels_group = {ubx_nav_svinfo_channel_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_svinfo, num_ch), 0, 0, 65535, NMEA_UBX_NAV_SVINFO_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_svinfo_channel), 0, offsetof(nmea_ubx_nav_svinfo, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_svinfo_channels_group = {ubx_nav_svinfo_channel_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_svinfo, num_ch), 0, 0, 65535, NMEA_UBX_NAV_SVINFO_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_svinfo_channel), 0, offsetof(nmea_ubx_nav_svinfo, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_svinfo_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_svinfo, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_ch", NULL, offsetof(nmea_ubx_nav_svinfo, num_ch), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1826,7 +1918,7 @@ static const nmea_ubx_item ubx_nav_dgps_channel_items[] = {
     {"prrc", NULL, offsetof(nmea_ubx_nav_dgps_channel, prrc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_dgps_channels_group = {ubx_nav_dgps_channel_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_dgps, num_ch), 0, 0, 65535, NMEA_UBX_NAV_DGPS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_dgps_channel), 0, offsetof(nmea_ubx_nav_dgps, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_dgps_channels_group = {ubx_nav_dgps_channel_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_dgps, num_ch), 0, 0, 65535, NMEA_UBX_NAV_DGPS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_dgps_channel), 0, offsetof(nmea_ubx_nav_dgps, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_dgps_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_dgps, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"age", NULL, offsetof(nmea_ubx_nav_dgps, age), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1854,7 +1946,7 @@ static const nmea_ubx_item ubx_nav_sbas_channel_items[] = {
     {"ic", NULL, offsetof(nmea_ubx_nav_sbas_channel, ic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_sbas_channels_group = {ubx_nav_sbas_channel_items, 9, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sbas, cnt), 0, 0, 65535, NMEA_UBX_NAV_SBAS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_sbas_channel), 0, offsetof(nmea_ubx_nav_sbas, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_sbas_channels_group = {ubx_nav_sbas_channel_items, 9, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sbas, cnt), 0, 0, 65535, NMEA_UBX_NAV_SBAS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_sbas_channel), 0, offsetof(nmea_ubx_nav_sbas, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_sbas_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_sbas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"geo", NULL, offsetof(nmea_ubx_nav_sbas, geo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1894,7 +1986,7 @@ static const nmea_ubx_item ubx_nav_orb_sv_items[] = {
     {"type", NULL, offsetof(nmea_ubx_nav_orb_sv, type), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_orb_svs_group = {ubx_nav_orb_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_orb, num_sv), 0, 0, 65535, NMEA_UBX_NAV_ORB_SVS_MAX, 6, sizeof(nmea_ubx_nav_orb_sv), 0, offsetof(nmea_ubx_nav_orb, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_orb_svs_group = {ubx_nav_orb_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_orb, num_sv), 0, 0, 65535, NMEA_UBX_NAV_ORB_SVS_MAX, 6, sizeof(nmea_ubx_nav_orb_sv), 0, offsetof(nmea_ubx_nav_orb, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_orb_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_orb, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav_orb, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1935,7 +2027,7 @@ static const nmea_ubx_item ubx_nav_sat_sv_items[] = {
     {"do_corr_used", NULL, offsetof(nmea_ubx_nav_sat_sv, do_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 22, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_sat_svs_group = {ubx_nav_sat_sv_items, 24, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sat, num_svs), 0, 0, 65535, NMEA_UBX_NAV_SAT_SVS_MAX, 12, sizeof(nmea_ubx_nav_sat_sv), 0, offsetof(nmea_ubx_nav_sat, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_sat_svs_group = {ubx_nav_sat_sv_items, 24, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sat, num_svs), 0, 0, 65535, NMEA_UBX_NAV_SAT_SVS_MAX, 12, sizeof(nmea_ubx_nav_sat_sv), 0, offsetof(nmea_ubx_nav_sat, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_sat_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_sat, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav_sat, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1977,7 +2069,7 @@ static const nmea_ubx_item ubx_nav_geofence_fence_items[] = {
     {"id", NULL, offsetof(nmea_ubx_nav_geofence_fence, id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_geofence_fences_group = {ubx_nav_geofence_fence_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_geofence, num_fences), 0, 0, 65535, NMEA_UBX_NAV_GEOFENCE_FENCES_MAX, 2, sizeof(nmea_ubx_nav_geofence_fence), 0, offsetof(nmea_ubx_nav_geofence, fences_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_geofence_fences_group = {ubx_nav_geofence_fence_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_geofence, num_fences), 0, 0, 65535, NMEA_UBX_NAV_GEOFENCE_FENCES_MAX, 2, sizeof(nmea_ubx_nav_geofence_fence), 0, offsetof(nmea_ubx_nav_geofence, fences_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_geofence_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_geofence, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav_geofence, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2121,7 +2213,7 @@ static const nmea_ubx_item ubx_nav_slas_correction_items[] = {
 
 static const nmea_ubx_scale ubx_nav_slas_gms_lon_scale = {1000.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_nav_slas_gms_lat_scale = {1000.0, 0.0, true, NULL, 0};
-static const nmea_ubx_group ubx_nav_slas_corrections_group = {ubx_nav_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav_slas_correction), 0, offsetof(nmea_ubx_nav_slas, corrections_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_slas_corrections_group = {ubx_nav_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav_slas_correction), 0, offsetof(nmea_ubx_nav_slas, corrections_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_slas_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_slas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav_slas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2165,7 +2257,7 @@ static const nmea_ubx_item ubx_nav_sig_signal_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_nav_sig_signal, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav_sig_signals_group = {ubx_nav_sig_signal_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sig, num_sigs), 0, 0, 65535, NMEA_UBX_NAV_SIG_SIGNALS_MAX, 16, sizeof(nmea_ubx_nav_sig_signal), 0, offsetof(nmea_ubx_nav_sig, signals_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav_sig_signals_group = {ubx_nav_sig_signal_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_sig, num_sigs), 0, 0, 65535, NMEA_UBX_NAV_SIG_SIGNALS_MAX, 16, sizeof(nmea_ubx_nav_sig_signal), 0, offsetof(nmea_ubx_nav_sig, signals_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav_sig_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_sig, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav_sig, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2242,7 +2334,7 @@ static const nmea_ubx_item ubx_rxm_sfrbx_word_items[] = {
     {"dwrd", NULL, offsetof(nmea_ubx_rxm_sfrbx_word, dwrd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_rxm_sfrbx_words_group = {ubx_rxm_sfrbx_word_items, 1, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_sfrbx, num_words), 0, 0, 65535, NMEA_UBX_RXM_SFRBX_WORDS_MAX, 4, sizeof(nmea_ubx_rxm_sfrbx_word), 0, offsetof(nmea_ubx_rxm_sfrbx, words_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_sfrbx_words_group = {ubx_rxm_sfrbx_word_items, 1, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_sfrbx, num_words), 0, 0, 65535, NMEA_UBX_RXM_SFRBX_WORDS_MAX, 4, sizeof(nmea_ubx_rxm_sfrbx_word), 0, offsetof(nmea_ubx_rxm_sfrbx, words_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_sfrbx_items[] = {
     {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_rxm_sfrbx, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
     {"sv_id", NULL, offsetof(nmea_ubx_rxm_sfrbx, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2281,7 +2373,7 @@ static const nmea_ubx_scale ubx_rxm_measx_gps_tow_acc_scale = {16.0, 0.0, true, 
 static const nmea_ubx_scale ubx_rxm_measx_glo_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_rxm_measx_bds_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_rxm_measx_qzss_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
-static const nmea_ubx_group ubx_rxm_measx_svs_group = {ubx_rxm_measx_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_measx, num_sv), 0, 0, 65535, NMEA_UBX_RXM_MEASX_SVS_MAX, 24, sizeof(nmea_ubx_rxm_measx_sv), 0, offsetof(nmea_ubx_rxm_measx, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_measx_svs_group = {ubx_rxm_measx_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_measx, num_sv), 0, 0, 65535, NMEA_UBX_RXM_MEASX_SVS_MAX, 24, sizeof(nmea_ubx_rxm_measx_sv), 0, offsetof(nmea_ubx_rxm_measx, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_measx_items[] = {
     {"version", NULL, offsetof(nmea_ubx_rxm_measx, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_rxm_measx, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2330,7 +2422,7 @@ static const nmea_ubx_item ubx_rxm_rawx_measurement_items[] = {
     {"reserved2", NULL, offsetof(nmea_ubx_rxm_rawx_measurement, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_rxm_rawx_measurements_group = {ubx_rxm_rawx_measurement_items, 21, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_rawx, num_meas), 0, 0, 65535, NMEA_UBX_RXM_RAWX_MEASUREMENTS_MAX, 32, sizeof(nmea_ubx_rxm_rawx_measurement), 0, offsetof(nmea_ubx_rxm_rawx, measurements_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_rawx_measurements_group = {ubx_rxm_rawx_measurement_items, 21, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_rawx, num_meas), 0, 0, 65535, NMEA_UBX_RXM_RAWX_MEASUREMENTS_MAX, 32, sizeof(nmea_ubx_rxm_rawx_measurement), 0, offsetof(nmea_ubx_rxm_rawx, measurements_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_rawx_items[] = {
     {"rcv_tow", NULL, offsetof(nmea_ubx_rxm_rawx, rcv_tow), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"week", NULL, offsetof(nmea_ubx_rxm_rawx, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2363,7 +2455,7 @@ static const nmea_ubx_item ubx_rxm_svsi_sv_items[] = {
     {"eph_age", NULL, offsetof(nmea_ubx_rxm_svsi_sv, eph_age), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 4, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_rxm_svsi_svs_group = {ubx_rxm_svsi_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_svsi, num_sv), 0, 0, 65535, NMEA_UBX_RXM_SVSI_SVS_MAX, 6, sizeof(nmea_ubx_rxm_svsi_sv), 0, offsetof(nmea_ubx_rxm_svsi, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_svsi_svs_group = {ubx_rxm_svsi_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_svsi, num_sv), 0, 0, 65535, NMEA_UBX_RXM_SVSI_SVS_MAX, 6, sizeof(nmea_ubx_rxm_svsi_sv), 0, offsetof(nmea_ubx_rxm_svsi, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_svsi_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_rxm_svsi, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"week", NULL, offsetof(nmea_ubx_rxm_svsi, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2428,8 +2520,8 @@ static const nmea_ubx_item ubx_rxm_spartnkey_key_items[] = {
     {"key", NULL, offsetof(nmea_ubx_rxm_spartnkey_key, key), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_rxm_spartnkey_key_info_group = {ubx_rxm_spartnkey_key_info_entry_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_spartnkey, num_keys), 0, 0, 65535, NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX, 8, sizeof(nmea_ubx_rxm_spartnkey_key_info_entry), 0, offsetof(nmea_ubx_rxm_spartnkey, key_info_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_rxm_spartnkey_keys_group = {ubx_rxm_spartnkey_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX, 1, sizeof(nmea_ubx_rxm_spartnkey_key), 0, offsetof(nmea_ubx_rxm_spartnkey, keys_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_spartnkey_key_info_group = {ubx_rxm_spartnkey_key_info_entry_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_spartnkey, num_keys), 0, 0, 65535, NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX, 8, sizeof(nmea_ubx_rxm_spartnkey_key_info_entry), 0, offsetof(nmea_ubx_rxm_spartnkey, key_info_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_rxm_spartnkey_keys_group = {ubx_rxm_spartnkey_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX, 1, sizeof(nmea_ubx_rxm_spartnkey_key), 0, offsetof(nmea_ubx_rxm_spartnkey, keys_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_spartnkey_items[] = {
     {"version", NULL, offsetof(nmea_ubx_rxm_spartnkey, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_keys", NULL, offsetof(nmea_ubx_rxm_spartnkey, num_keys), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2522,7 +2614,7 @@ static const nmea_ubx_item ubx_rxm_imes_transmitter_items[] = {
     {"medium_boundary", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_boundary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_rxm_imes_transmitters_group = {ubx_rxm_imes_transmitter_items, 28, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, 65535, NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX, 44, sizeof(nmea_ubx_rxm_imes_transmitter), 0, offsetof(nmea_ubx_rxm_imes, transmitters_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_rxm_imes_transmitters_group = {ubx_rxm_imes_transmitter_items, 28, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, 65535, NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX, 44, sizeof(nmea_ubx_rxm_imes_transmitter), 0, offsetof(nmea_ubx_rxm_imes, transmitters_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_rxm_imes_items[] = {
     {"num_tx", NULL, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_rxm_imes, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2675,7 +2767,7 @@ static const nmea_ubx_item ubx_cfg_msg_rate_items[] = {
     {"rate", NULL, offsetof(nmea_ubx_cfg_msg_rate, rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_msg_rates_group = {ubx_cfg_msg_rate_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_CFG_MSG_RATES_MAX, 1, sizeof(nmea_ubx_cfg_msg_rate), 0, offsetof(nmea_ubx_cfg_msg, rates_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_msg_rates_group = {ubx_cfg_msg_rate_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_CFG_MSG_RATES_MAX, 1, sizeof(nmea_ubx_cfg_msg_rate), 0, offsetof(nmea_ubx_cfg_msg, rates_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_msg_items[] = {
     {"msg_class", NULL, offsetof(nmea_ubx_cfg_msg, msg_class), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"msg_id", NULL, offsetof(nmea_ubx_cfg_msg, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2704,7 +2796,7 @@ static const nmea_ubx_item ubx_cfg_inf_block_items[] = {
     {"inf_msg_mask_reserved", NULL, offsetof(nmea_ubx_cfg_inf_block, inf_msg_mask_reserved), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_inf_blocks_group = {ubx_cfg_inf_block_items, 13, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 2, NMEA_UBX_CFG_INF_BLOCKS_MAX, 10, sizeof(nmea_ubx_cfg_inf_block), 0, offsetof(nmea_ubx_cfg_inf, blocks_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_inf_blocks_group = {ubx_cfg_inf_block_items, 13, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 2, NMEA_UBX_CFG_INF_BLOCKS_MAX, 10, sizeof(nmea_ubx_cfg_inf_block), 0, offsetof(nmea_ubx_cfg_inf, blocks_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_inf_items[] = {
     {"blocks", &ubx_cfg_inf_blocks_group, offsetof(nmea_ubx_cfg_inf, blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
@@ -3073,7 +3165,7 @@ static const nmea_ubx_item ubx_cfg_rinv_data_entry_items[] = {
     {"data", NULL, offsetof(nmea_ubx_cfg_rinv_data_entry, data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_rinv_data_group = {ubx_cfg_rinv_data_entry_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 30, NMEA_UBX_CFG_RINV_DATA_MAX, 1, sizeof(nmea_ubx_cfg_rinv_data_entry), 0, offsetof(nmea_ubx_cfg_rinv, data_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_rinv_data_group = {ubx_cfg_rinv_data_entry_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 30, NMEA_UBX_CFG_RINV_DATA_MAX, 1, sizeof(nmea_ubx_cfg_rinv_data_entry), 0, offsetof(nmea_ubx_cfg_rinv, data_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_rinv_items[] = {
     {"flags", NULL, offsetof(nmea_ubx_cfg_rinv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"dump", NULL, offsetof(nmea_ubx_cfg_rinv, dump), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3187,7 +3279,7 @@ static const nmea_ubx_item ubx_cfg_gnss_block_items[] = {
     {"sig_cfg_mask", NULL, offsetof(nmea_ubx_cfg_gnss_block, sig_cfg_mask), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 16, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_gnss_blocks_group = {ubx_cfg_gnss_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_gnss, num_config_blocks), 0, 0, 65535, NMEA_UBX_CFG_GNSS_BLOCKS_MAX, 8, sizeof(nmea_ubx_cfg_gnss_block), 0, offsetof(nmea_ubx_cfg_gnss, blocks_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_gnss_blocks_group = {ubx_cfg_gnss_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_gnss, num_config_blocks), 0, 0, 65535, NMEA_UBX_CFG_GNSS_BLOCKS_MAX, 8, sizeof(nmea_ubx_cfg_gnss_block), 0, offsetof(nmea_ubx_cfg_gnss, blocks_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_gnss_items[] = {
     {"msg_ver", NULL, offsetof(nmea_ubx_cfg_gnss, msg_ver), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_trk_ch_hw", NULL, offsetof(nmea_ubx_cfg_gnss, num_trk_ch_hw), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3253,7 +3345,7 @@ static const nmea_ubx_item ubx_cfg_txslot_end_entry_items[] = {
     {"end", NULL, offsetof(nmea_ubx_cfg_txslot_end_entry, end), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_txslot_end_group = {ubx_cfg_txslot_end_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 3, 0, 65535, NMEA_UBX_CFG_TXSLOT_END_MAX, 4, sizeof(nmea_ubx_cfg_txslot_end_entry), 0, offsetof(nmea_ubx_cfg_txslot, end_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_txslot_end_group = {ubx_cfg_txslot_end_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 3, 0, 65535, NMEA_UBX_CFG_TXSLOT_END_MAX, 4, sizeof(nmea_ubx_cfg_txslot_end_entry), 0, offsetof(nmea_ubx_cfg_txslot, end_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_txslot_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_txslot, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"enable", NULL, offsetof(nmea_ubx_cfg_txslot, enable), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3323,7 +3415,7 @@ static const nmea_ubx_item ubx_cfg_esrc_source_items[] = {
     {"jitter", NULL, offsetof(nmea_ubx_cfg_esrc_source, jitter), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_esrc_sources_group = {ubx_cfg_esrc_source_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_esrc, num_sources), 0, 0, 2, NMEA_UBX_CFG_ESRC_SOURCES_MAX, 36, sizeof(nmea_ubx_cfg_esrc_source), 0, offsetof(nmea_ubx_cfg_esrc, sources_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_esrc_sources_group = {ubx_cfg_esrc_source_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_esrc, num_sources), 0, 0, 2, NMEA_UBX_CFG_ESRC_SOURCES_MAX, 36, sizeof(nmea_ubx_cfg_esrc_source), 0, offsetof(nmea_ubx_cfg_esrc, sources_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_esrc_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_esrc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_sources", NULL, offsetof(nmea_ubx_cfg_esrc, num_sources), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3357,7 +3449,7 @@ static const nmea_ubx_item ubx_cfg_dosc_oscillator_items[] = {
     {"reserved4", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_dosc_oscillators_group = {ubx_cfg_dosc_oscillator_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_dosc, num_osc), 0, 0, 2, NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX, 32, sizeof(nmea_ubx_cfg_dosc_oscillator), 0, offsetof(nmea_ubx_cfg_dosc, oscillators_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_dosc_oscillators_group = {ubx_cfg_dosc_oscillator_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_dosc, num_osc), 0, 0, 2, NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX, 32, sizeof(nmea_ubx_cfg_dosc_oscillator), 0, offsetof(nmea_ubx_cfg_dosc, oscillators_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_dosc_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_dosc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_osc", NULL, offsetof(nmea_ubx_cfg_dosc, num_osc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3424,7 +3516,7 @@ static const nmea_ubx_item ubx_cfg_geofence_fence_items[] = {
     {"radius", &ubx_cfg_geofence_fence_radius_scale, offsetof(nmea_ubx_cfg_geofence_fence, radius), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
-static const nmea_ubx_group ubx_cfg_geofence_fences_group = {ubx_cfg_geofence_fence_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_geofence, num_fences), 0, 0, 4, NMEA_UBX_CFG_GEOFENCE_FENCES_MAX, 12, sizeof(nmea_ubx_cfg_geofence_fence), 0, offsetof(nmea_ubx_cfg_geofence, fences_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_geofence_fences_group = {ubx_cfg_geofence_fence_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_geofence, num_fences), 0, 0, 4, NMEA_UBX_CFG_GEOFENCE_FENCES_MAX, 12, sizeof(nmea_ubx_cfg_geofence_fence), 0, offsetof(nmea_ubx_cfg_geofence, fences_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_geofence_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_geofence, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_fences", NULL, offsetof(nmea_ubx_cfg_geofence, num_fences), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3507,7 +3599,7 @@ static const nmea_ubx_item ubx_cfg_fixseed_message_items[] = {
     {"msg_id", NULL, offsetof(nmea_ubx_cfg_fixseed_message, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_fixseed_messages_group = {ubx_cfg_fixseed_message_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_fixseed, length), 0, 0, 65535, NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX, 2, sizeof(nmea_ubx_cfg_fixseed_message), 0, offsetof(nmea_ubx_cfg_fixseed, messages_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_fixseed_messages_group = {ubx_cfg_fixseed_message_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_fixseed, length), 0, 0, 65535, NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX, 2, sizeof(nmea_ubx_cfg_fixseed_message), 0, offsetof(nmea_ubx_cfg_fixseed, messages_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_fixseed_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_fixseed, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"length", NULL, offsetof(nmea_ubx_cfg_fixseed, length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3580,7 +3672,7 @@ static const nmea_ubx_item ubx_cfg_valget_poll_key_items[] = {
     {"key", NULL, offsetof(nmea_ubx_cfg_valget_poll_key, key), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_valget_poll_keys_group = {ubx_cfg_valget_poll_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valget_poll_key), 0, offsetof(nmea_ubx_cfg_valget_poll, keys_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_valget_poll_keys_group = {ubx_cfg_valget_poll_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valget_poll_key), 0, offsetof(nmea_ubx_cfg_valget_poll, keys_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_valget_poll_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_valget_poll, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"layer", NULL, offsetof(nmea_ubx_cfg_valget_poll, layer), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3601,7 +3693,7 @@ static const nmea_ubx_item ubx_cfg_valdel_v0_key_items[] = {
     {"key", NULL, offsetof(nmea_ubx_cfg_valdel_v0_key, key), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_valdel_v0_keys_group = {ubx_cfg_valdel_v0_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALDEL_V0_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valdel_v0_key), 0, offsetof(nmea_ubx_cfg_valdel_v0, keys_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_valdel_v0_keys_group = {ubx_cfg_valdel_v0_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALDEL_V0_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valdel_v0_key), 0, offsetof(nmea_ubx_cfg_valdel_v0, keys_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_valdel_v0_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_valdel_v0, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"layers", NULL, offsetof(nmea_ubx_cfg_valdel_v0, layers), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3616,7 +3708,7 @@ static const nmea_ubx_item ubx_cfg_valdel_key_items[] = {
     {"key", NULL, offsetof(nmea_ubx_cfg_valdel_key, key), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_cfg_valdel_keys_group = {ubx_cfg_valdel_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALDEL_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valdel_key), 0, offsetof(nmea_ubx_cfg_valdel, keys_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_cfg_valdel_keys_group = {ubx_cfg_valdel_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_CFG_VALDEL_KEYS_MAX, 4, sizeof(nmea_ubx_cfg_valdel_key), 0, offsetof(nmea_ubx_cfg_valdel, keys_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_cfg_valdel_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_valdel, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"layers", NULL, offsetof(nmea_ubx_cfg_valdel, layers), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3691,7 +3783,7 @@ static const nmea_ubx_item ubx_mon_io_port_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mon_io_port, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_io_ports_group = {ubx_mon_io_port_items, 9, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 6, NMEA_UBX_MON_IO_PORTS_MAX, 20, sizeof(nmea_ubx_mon_io_port), 0, offsetof(nmea_ubx_mon_io, ports_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_io_ports_group = {ubx_mon_io_port_items, 9, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 6, NMEA_UBX_MON_IO_PORTS_MAX, 20, sizeof(nmea_ubx_mon_io_port), 0, offsetof(nmea_ubx_mon_io, ports_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_io_items[] = {
     {"ports", &ubx_mon_io_ports_group, offsetof(nmea_ubx_mon_io, ports), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
@@ -3704,7 +3796,7 @@ static const nmea_ubx_item ubx_mon_ver_extension_items[] = {
     {"extension", NULL, offsetof(nmea_ubx_mon_ver_extension, extension), 0, 0, NMEA_UBX_ITEM_ARRAY, 30, 30, 0, NMEA_UBX_PRINT_CHARS, false}
 };
 
-static const nmea_ubx_group ubx_mon_ver_extensions_group = {ubx_mon_ver_extension_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 100, NMEA_UBX_MON_VER_EXTENSIONS_MAX, 30, sizeof(nmea_ubx_mon_ver_extension), 0, offsetof(nmea_ubx_mon_ver, extensions_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_ver_extensions_group = {ubx_mon_ver_extension_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 100, NMEA_UBX_MON_VER_EXTENSIONS_MAX, 30, sizeof(nmea_ubx_mon_ver_extension), 0, offsetof(nmea_ubx_mon_ver, extensions_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_ver_items[] = {
     {"sw_version", NULL, offsetof(nmea_ubx_mon_ver, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 30, 30, 0, NMEA_UBX_PRINT_CHARS, false},
     {"hw_version", NULL, offsetof(nmea_ubx_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 10, 10, 0, NMEA_UBX_PRINT_CHARS, false},
@@ -3743,13 +3835,13 @@ static const nmea_ubx_item ubx_mon_msgpp_skipped_entry_items[] = {
     {"skipped", NULL, offsetof(nmea_ubx_mon_msgpp_skipped_entry, skipped), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_msgpp_msg1_group = {ubx_mon_msgpp_msg1_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG1_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg1_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg1_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_msg2_group = {ubx_mon_msgpp_msg2_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG2_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg2_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg2_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_msg3_group = {ubx_mon_msgpp_msg3_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG3_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg3_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg3_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_msg4_group = {ubx_mon_msgpp_msg4_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG4_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg4_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg4_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_msg5_group = {ubx_mon_msgpp_msg5_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG5_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg5_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg5_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_msg6_group = {ubx_mon_msgpp_msg6_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG6_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg6_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg6_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_msgpp_skipped_group = {ubx_mon_msgpp_skipped_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_MSGPP_SKIPPED_MAX, 4, sizeof(nmea_ubx_mon_msgpp_skipped_entry), 0, offsetof(nmea_ubx_mon_msgpp, skipped_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_msgpp_msg1_group = {ubx_mon_msgpp_msg1_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG1_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg1_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg1_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_msg2_group = {ubx_mon_msgpp_msg2_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG2_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg2_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg2_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_msg3_group = {ubx_mon_msgpp_msg3_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG3_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg3_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg3_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_msg4_group = {ubx_mon_msgpp_msg4_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG4_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg4_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg4_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_msg5_group = {ubx_mon_msgpp_msg5_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG5_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg5_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg5_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_msg6_group = {ubx_mon_msgpp_msg6_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG6_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg6_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg6_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_msgpp_skipped_group = {ubx_mon_msgpp_skipped_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_MSGPP_SKIPPED_MAX, 4, sizeof(nmea_ubx_mon_msgpp_skipped_entry), 0, offsetof(nmea_ubx_mon_msgpp, skipped_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_msgpp_items[] = {
     {"msg1", &ubx_mon_msgpp_msg1_group, offsetof(nmea_ubx_mon_msgpp, msg1), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"msg2", &ubx_mon_msgpp_msg2_group, offsetof(nmea_ubx_mon_msgpp, msg2), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3776,9 +3868,9 @@ static const nmea_ubx_item ubx_mon_rxbuf_peak_usage_entry_items[] = {
     {"peak_usage", NULL, offsetof(nmea_ubx_mon_rxbuf_peak_usage_entry, peak_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_rxbuf_pending_group = {ubx_mon_rxbuf_pending_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_PENDING_MAX, 2, sizeof(nmea_ubx_mon_rxbuf_pending_entry), 0, offsetof(nmea_ubx_mon_rxbuf, pending_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_rxbuf_usage_group = {ubx_mon_rxbuf_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_USAGE_MAX, 1, sizeof(nmea_ubx_mon_rxbuf_usage_entry), 0, offsetof(nmea_ubx_mon_rxbuf, usage_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_rxbuf_peak_usage_group = {ubx_mon_rxbuf_peak_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_PEAK_USAGE_MAX, 1, sizeof(nmea_ubx_mon_rxbuf_peak_usage_entry), 0, offsetof(nmea_ubx_mon_rxbuf, peak_usage_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_rxbuf_pending_group = {ubx_mon_rxbuf_pending_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_PENDING_MAX, 2, sizeof(nmea_ubx_mon_rxbuf_pending_entry), 0, offsetof(nmea_ubx_mon_rxbuf, pending_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_rxbuf_usage_group = {ubx_mon_rxbuf_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_USAGE_MAX, 1, sizeof(nmea_ubx_mon_rxbuf_usage_entry), 0, offsetof(nmea_ubx_mon_rxbuf, usage_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_rxbuf_peak_usage_group = {ubx_mon_rxbuf_peak_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_RXBUF_PEAK_USAGE_MAX, 1, sizeof(nmea_ubx_mon_rxbuf_peak_usage_entry), 0, offsetof(nmea_ubx_mon_rxbuf, peak_usage_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_rxbuf_items[] = {
     {"pending", &ubx_mon_rxbuf_pending_group, offsetof(nmea_ubx_mon_rxbuf, pending), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"usage", &ubx_mon_rxbuf_usage_group, offsetof(nmea_ubx_mon_rxbuf, usage), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3801,9 +3893,9 @@ static const nmea_ubx_item ubx_mon_txbuf_peak_usage_entry_items[] = {
     {"peak_usage", NULL, offsetof(nmea_ubx_mon_txbuf_peak_usage_entry, peak_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_txbuf_pending_group = {ubx_mon_txbuf_pending_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_PENDING_MAX, 2, sizeof(nmea_ubx_mon_txbuf_pending_entry), 4, offsetof(nmea_ubx_mon_txbuf, pending_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_txbuf_usage_group = {ubx_mon_txbuf_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_USAGE_MAX, 1, sizeof(nmea_ubx_mon_txbuf_usage_entry), 4, offsetof(nmea_ubx_mon_txbuf, usage_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_txbuf_peak_usage_group = {ubx_mon_txbuf_peak_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_PEAK_USAGE_MAX, 1, sizeof(nmea_ubx_mon_txbuf_peak_usage_entry), 4, offsetof(nmea_ubx_mon_txbuf, peak_usage_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_txbuf_pending_group = {ubx_mon_txbuf_pending_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_PENDING_MAX, 2, sizeof(nmea_ubx_mon_txbuf_pending_entry), 4, offsetof(nmea_ubx_mon_txbuf, pending_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_txbuf_usage_group = {ubx_mon_txbuf_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_USAGE_MAX, 1, sizeof(nmea_ubx_mon_txbuf_usage_entry), 4, offsetof(nmea_ubx_mon_txbuf, usage_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_txbuf_peak_usage_group = {ubx_mon_txbuf_peak_usage_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_TXBUF_PEAK_USAGE_MAX, 1, sizeof(nmea_ubx_mon_txbuf_peak_usage_entry), 4, offsetof(nmea_ubx_mon_txbuf, peak_usage_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_txbuf_items[] = {
     {"pending", &ubx_mon_txbuf_pending_group, offsetof(nmea_ubx_mon_txbuf, pending), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"usage", &ubx_mon_txbuf_usage_group, offsetof(nmea_ubx_mon_txbuf, usage), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3825,7 +3917,7 @@ static const nmea_ubx_item ubx_mon_hw_vp_entry_items[] = {
     {"vp", NULL, offsetof(nmea_ubx_mon_hw_vp_entry, vp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_hw_vp_group = {ubx_mon_hw_vp_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 17, 0, 65535, NMEA_UBX_MON_HW_VP_MAX, 1, sizeof(nmea_ubx_mon_hw_vp_entry), 15, offsetof(nmea_ubx_mon_hw, vp_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_hw_vp_group = {ubx_mon_hw_vp_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 17, 0, 65535, NMEA_UBX_MON_HW_VP_MAX, 1, sizeof(nmea_ubx_mon_hw_vp_entry), 15, offsetof(nmea_ubx_mon_hw, vp_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_hw_items[] = {
     {"pin_sel", NULL, offsetof(nmea_ubx_mon_hw, pin_sel), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"pin_bank", NULL, offsetof(nmea_ubx_mon_hw, pin_bank), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3886,7 +3978,7 @@ static const nmea_ubx_item ubx_mon_patch_entrie_items[] = {
     {"patch_data", NULL, offsetof(nmea_ubx_mon_patch_entrie, patch_data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_patch_entries_group = {ubx_mon_patch_entrie_items, 6, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_mon_patch, n_entries), 0, 0, 32, NMEA_UBX_MON_PATCH_ENTRIES_MAX, 16, sizeof(nmea_ubx_mon_patch_entrie), 0, offsetof(nmea_ubx_mon_patch, entries_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_patch_entries_group = {ubx_mon_patch_entrie_items, 6, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_mon_patch, n_entries), 0, 0, 32, NMEA_UBX_MON_PATCH_ENTRIES_MAX, 16, sizeof(nmea_ubx_mon_patch_entrie), 0, offsetof(nmea_ubx_mon_patch, entries_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_patch_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_patch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"n_entries", NULL, offsetof(nmea_ubx_mon_patch, n_entries), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3968,8 +4060,8 @@ static const nmea_ubx_item ubx_mon_spt_result_items[] = {
     {"value", NULL, offsetof(nmea_ubx_mon_spt_result, value), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_spt_sensors_group = {ubx_mon_spt_sensor_items, 6, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, 65535, NMEA_UBX_MON_SPT_SENSORS_MAX, 4, sizeof(nmea_ubx_mon_spt_sensor), 0, offsetof(nmea_ubx_mon_spt, sensors_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_spt_results_group = {ubx_mon_spt_result_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, 65535, NMEA_UBX_MON_SPT_RESULTS_MAX, 12, sizeof(nmea_ubx_mon_spt_result), 0, offsetof(nmea_ubx_mon_spt, results_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_spt_sensors_group = {ubx_mon_spt_sensor_items, 6, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, 65535, NMEA_UBX_MON_SPT_SENSORS_MAX, 4, sizeof(nmea_ubx_mon_spt_sensor), 0, offsetof(nmea_ubx_mon_spt, sensors_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_spt_results_group = {ubx_mon_spt_result_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, 65535, NMEA_UBX_MON_SPT_RESULTS_MAX, 12, sizeof(nmea_ubx_mon_spt_result), 0, offsetof(nmea_ubx_mon_spt, results_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_spt_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_spt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_sensor", NULL, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -3993,7 +4085,7 @@ static const nmea_ubx_item ubx_mon_span_rf_block_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mon_span_rf_block, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_span_rf_blocks_group = {ubx_mon_span_rf_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, 4, NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX, 272, sizeof(nmea_ubx_mon_span_rf_block), 0, offsetof(nmea_ubx_mon_span, rf_blocks_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_span_rf_blocks_group = {ubx_mon_span_rf_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, 4, NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX, 272, sizeof(nmea_ubx_mon_span_rf_block), 0, offsetof(nmea_ubx_mon_span, rf_blocks_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_span_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_span, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_rf_blocks", NULL, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4030,7 +4122,7 @@ static const nmea_ubx_item ubx_mon_pmp_entrie_items[] = {
     {"reserved3", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_pmp_entries_group = {ubx_mon_pmp_entrie_items, 8, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, 65535, NMEA_UBX_MON_PMP_ENTRIES_MAX, 20, sizeof(nmea_ubx_mon_pmp_entrie), 0, offsetof(nmea_ubx_mon_pmp, entries_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_pmp_entries_group = {ubx_mon_pmp_entrie_items, 8, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, 65535, NMEA_UBX_MON_PMP_ENTRIES_MAX, 20, sizeof(nmea_ubx_mon_pmp_entrie), 0, offsetof(nmea_ubx_mon_pmp, entries_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_pmp_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_pmp, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"n_entries", NULL, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4065,8 +4157,8 @@ static const nmea_ubx_item ubx_mon_comms_port_items[] = {
     {"skipped", NULL, offsetof(nmea_ubx_mon_comms_port, skipped), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_comms_prot_ids_group = {ubx_mon_comms_prot_id_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 4, 0, 65535, NMEA_UBX_MON_COMMS_PROT_IDS_MAX, 1, sizeof(nmea_ubx_mon_comms_prot_id), 0, offsetof(nmea_ubx_mon_comms, prot_ids_count), 0, 0, NULL};
-static const nmea_ubx_group ubx_mon_comms_ports_group = {ubx_mon_comms_port_items, 16, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_comms, n_ports), 0, 0, 16, NMEA_UBX_MON_COMMS_PORTS_MAX, 40, sizeof(nmea_ubx_mon_comms_port), 0, offsetof(nmea_ubx_mon_comms, ports_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_comms_prot_ids_group = {ubx_mon_comms_prot_id_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 4, 0, 65535, NMEA_UBX_MON_COMMS_PROT_IDS_MAX, 1, sizeof(nmea_ubx_mon_comms_prot_id), 0, offsetof(nmea_ubx_mon_comms, prot_ids_count), 0, 0, NULL, NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_mon_comms_ports_group = {ubx_mon_comms_port_items, 16, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_comms, n_ports), 0, 0, 16, NMEA_UBX_MON_COMMS_PORTS_MAX, 40, sizeof(nmea_ubx_mon_comms_port), 0, offsetof(nmea_ubx_mon_comms, ports_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_comms_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_comms, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"n_ports", NULL, offsetof(nmea_ubx_mon_comms, n_ports), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4097,7 +4189,7 @@ static const nmea_ubx_item ubx_mon_hw3_pin_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mon_hw3_pin, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_hw3_pins_group = {ubx_mon_hw3_pin_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_hw3, n_pins), 0, 0, 65535, NMEA_UBX_MON_HW3_PINS_MAX, 6, sizeof(nmea_ubx_mon_hw3_pin), 0, offsetof(nmea_ubx_mon_hw3, pins_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_hw3_pins_group = {ubx_mon_hw3_pin_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_hw3, n_pins), 0, 0, 65535, NMEA_UBX_MON_HW3_PINS_MAX, 6, sizeof(nmea_ubx_mon_hw3_pin), 0, offsetof(nmea_ubx_mon_hw3, pins_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_hw3_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_hw3, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"n_pins", NULL, offsetof(nmea_ubx_mon_hw3, n_pins), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4132,7 +4224,7 @@ static const nmea_ubx_item ubx_mon_rf_block_items[] = {
     {"reserved2", NULL, offsetof(nmea_ubx_mon_rf_block, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mon_rf_blocks_group = {ubx_mon_rf_block_items, 15, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_rf, n_blocks), 0, 0, 65535, NMEA_UBX_MON_RF_BLOCKS_MAX, 24, sizeof(nmea_ubx_mon_rf_block), 0, offsetof(nmea_ubx_mon_rf, blocks_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mon_rf_blocks_group = {ubx_mon_rf_block_items, 15, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_rf, n_blocks), 0, 0, 65535, NMEA_UBX_MON_RF_BLOCKS_MAX, 24, sizeof(nmea_ubx_mon_rf_block), 0, offsetof(nmea_ubx_mon_rf, blocks_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mon_rf_items[] = {
     {"version", NULL, offsetof(nmea_ubx_mon_rf, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"n_blocks", NULL, offsetof(nmea_ubx_mon_rf, n_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4235,7 +4327,7 @@ static const nmea_ubx_item ubx_aid_alm_dwrd_entry_items[] = {
     {"dwrd", NULL, offsetof(nmea_ubx_aid_alm_dwrd_entry, dwrd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_aid_alm_dwrd_group = {ubx_aid_alm_dwrd_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_AID_ALM_DWRD_MAX, 4, sizeof(nmea_ubx_aid_alm_dwrd_entry), 0, offsetof(nmea_ubx_aid_alm, dwrd_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_aid_alm_dwrd_group = {ubx_aid_alm_dwrd_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_AID_ALM_DWRD_MAX, 4, sizeof(nmea_ubx_aid_alm_dwrd_entry), 0, offsetof(nmea_ubx_aid_alm, dwrd_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_aid_alm_items[] = {
     {"svid", NULL, offsetof(nmea_ubx_aid_alm, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"week", NULL, offsetof(nmea_ubx_aid_alm, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4459,7 +4551,7 @@ static const nmea_ubx_item ubx_tim_smeas_mea_items[] = {
     {"freq_unc", &ubx_tim_smeas_mea_freq_unc_scale, offsetof(nmea_ubx_tim_smeas_mea, freq_unc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
-static const nmea_ubx_group ubx_tim_smeas_meas_group = {ubx_tim_smeas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_tim_smeas, num_meas), 0, 0, 65535, NMEA_UBX_TIM_SMEAS_MEAS_MAX, 24, sizeof(nmea_ubx_tim_smeas_mea), 0, offsetof(nmea_ubx_tim_smeas, meas_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_tim_smeas_meas_group = {ubx_tim_smeas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_tim_smeas, num_meas), 0, 0, 65535, NMEA_UBX_TIM_SMEAS_MEAS_MAX, 24, sizeof(nmea_ubx_tim_smeas_mea), 0, offsetof(nmea_ubx_tim_smeas, meas_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_tim_smeas_items[] = {
     {"version", NULL, offsetof(nmea_ubx_tim_smeas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_meas", NULL, offsetof(nmea_ubx_tim_smeas, num_meas), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4540,7 +4632,7 @@ static const nmea_ubx_item ubx_esf_meas_measurement_items[] = {
     {"data_type", NULL, offsetof(nmea_ubx_esf_meas_measurement, data_type), 0, 0, NMEA_UBX_ITEM_PART, 6, 1, 24, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_esf_meas_measurements_group = {ubx_esf_meas_measurement_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_esf_meas, num_meas), 0, 0, 65535, NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX, 4, sizeof(nmea_ubx_esf_meas_measurement), 0, offsetof(nmea_ubx_esf_meas, measurements_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_esf_meas_measurements_group = {ubx_esf_meas_measurement_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_esf_meas, num_meas), 0, 0, 65535, NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX, 4, sizeof(nmea_ubx_esf_meas_measurement), 0, offsetof(nmea_ubx_esf_meas, measurements_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_esf_meas_items[] = {
     {"time_tag", NULL, offsetof(nmea_ubx_esf_meas, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"flags", NULL, offsetof(nmea_ubx_esf_meas, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4561,7 +4653,7 @@ static const nmea_ubx_item ubx_esf_raw_measurement_items[] = {
     {"s_tag", NULL, offsetof(nmea_ubx_esf_raw_measurement, s_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_esf_raw_measurements_group = {ubx_esf_raw_measurement_items, 4, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 255, NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX, 8, sizeof(nmea_ubx_esf_raw_measurement), 0, offsetof(nmea_ubx_esf_raw, measurements_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_esf_raw_measurements_group = {ubx_esf_raw_measurement_items, 4, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 255, NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX, 8, sizeof(nmea_ubx_esf_raw_measurement), 0, offsetof(nmea_ubx_esf_raw, measurements_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_esf_raw_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_esf_raw, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"measurements", &ubx_esf_raw_measurements_group, offsetof(nmea_ubx_esf_raw, measurements), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
@@ -4587,7 +4679,7 @@ static const nmea_ubx_item ubx_esf_status_sensor_items[] = {
     {"noisy_meas", NULL, offsetof(nmea_ubx_esf_status_sensor, noisy_meas), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_esf_status_sensors_group = {ubx_esf_status_sensor_items, 13, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_esf_status, num_sens), 0, 0, 65535, NMEA_UBX_ESF_STATUS_SENSORS_MAX, 4, sizeof(nmea_ubx_esf_status_sensor), 0, offsetof(nmea_ubx_esf_status, sensors_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_esf_status_sensors_group = {ubx_esf_status_sensor_items, 13, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_esf_status, num_sens), 0, 0, 65535, NMEA_UBX_ESF_STATUS_SENSORS_MAX, 4, sizeof(nmea_ubx_esf_status_sensor), 0, offsetof(nmea_ubx_esf_status, sensors_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_esf_status_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_esf_status, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_esf_status, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4744,7 +4836,7 @@ static const nmea_ubx_item ubx_mga_gps_health_health_code_entry_items[] = {
     {"health_code", NULL, offsetof(nmea_ubx_mga_gps_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mga_gps_health_health_code_group = {ubx_mga_gps_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 32, 0, 65535, NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_gps_health_health_code_entry), 4, offsetof(nmea_ubx_mga_gps_health, health_code_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mga_gps_health_health_code_group = {ubx_mga_gps_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 32, 0, 65535, NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_gps_health_health_code_entry), 4, offsetof(nmea_ubx_mga_gps_health, health_code_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mga_gps_health_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_gps_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_mga_gps_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4998,7 +5090,7 @@ static const nmea_ubx_item ubx_mga_bds_health_health_code_entry_items[] = {
     {"health_code", NULL, offsetof(nmea_ubx_mga_bds_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mga_bds_health_health_code_group = {ubx_mga_bds_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 30, 0, 65535, NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX, 2, sizeof(nmea_ubx_mga_bds_health_health_code_entry), 4, offsetof(nmea_ubx_mga_bds_health, health_code_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mga_bds_health_health_code_group = {ubx_mga_bds_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 30, 0, 65535, NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX, 2, sizeof(nmea_ubx_mga_bds_health_health_code_entry), 4, offsetof(nmea_ubx_mga_bds_health, health_code_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mga_bds_health_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_bds_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_mga_bds_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -5133,7 +5225,7 @@ static const nmea_ubx_item ubx_mga_qzss_health_health_code_entry_items[] = {
     {"health_code", NULL, offsetof(nmea_ubx_mga_qzss_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_mga_qzss_health_health_code_group = {ubx_mga_qzss_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 5, 0, 65535, NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_qzss_health_health_code_entry), 3, offsetof(nmea_ubx_mga_qzss_health, health_code_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_mga_qzss_health_health_code_group = {ubx_mga_qzss_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 5, 0, 65535, NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_qzss_health_health_code_entry), 3, offsetof(nmea_ubx_mga_qzss_health, health_code_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_mga_qzss_health_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_qzss_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_mga_qzss_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -5483,7 +5575,7 @@ static const nmea_ubx_item ubx_log_retrievestring_byte_items[] = {
     {"bytes", NULL, offsetof(nmea_ubx_log_retrievestring_byte, bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_log_retrievestring_bytes_group = {ubx_log_retrievestring_byte_items, 1, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_log_retrievestring, byte_count), 0, 0, 256, NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX, 1, sizeof(nmea_ubx_log_retrievestring_byte), 0, offsetof(nmea_ubx_log_retrievestring, bytes_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_log_retrievestring_bytes_group = {ubx_log_retrievestring_byte_items, 1, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_log_retrievestring, byte_count), 0, 0, 256, NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX, 1, sizeof(nmea_ubx_log_retrievestring_byte), 0, offsetof(nmea_ubx_log_retrievestring, bytes_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_log_retrievestring_items[] = {
     {"entry_index", NULL, offsetof(nmea_ubx_log_retrievestring, entry_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_log_retrievestring, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -5626,7 +5718,7 @@ static const nmea_ubx_item ubx_sec_sig_cent_freq_items[] = {
     {"jammed", NULL, offsetof(nmea_ubx_sec_sig_cent_freq, jammed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 24, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_sec_sig_cent_freqs_group = {ubx_sec_sig_cent_freq_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_sig, jam_num_cent_freqs), 0, 0, 65535, NMEA_UBX_SEC_SIG_CENT_FREQS_MAX, 4, sizeof(nmea_ubx_sec_sig_cent_freq), 0, offsetof(nmea_ubx_sec_sig, cent_freqs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sec_sig_cent_freqs_group = {ubx_sec_sig_cent_freq_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_sig, jam_num_cent_freqs), 0, 0, 65535, NMEA_UBX_SEC_SIG_CENT_FREQS_MAX, 4, sizeof(nmea_ubx_sec_sig_cent_freq), 0, offsetof(nmea_ubx_sec_sig, cent_freqs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sec_sig_items[] = {
     {"version", NULL, offsetof(nmea_ubx_sec_sig, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"sig_sec_flags", NULL, offsetof(nmea_ubx_sec_sig, sig_sec_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -5664,7 +5756,7 @@ static const nmea_ubx_item ubx_sec_siglog_event_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_sec_siglog_event, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_sec_siglog_events_group = {ubx_sec_siglog_event_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_siglog, num_events), 0, 0, 65535, NMEA_UBX_SEC_SIGLOG_EVENTS_MAX, 8, sizeof(nmea_ubx_sec_siglog_event), 0, offsetof(nmea_ubx_sec_siglog, events_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sec_siglog_events_group = {ubx_sec_siglog_event_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_siglog, num_events), 0, 0, 65535, NMEA_UBX_SEC_SIGLOG_EVENTS_MAX, 8, sizeof(nmea_ubx_sec_siglog_event), 0, offsetof(nmea_ubx_sec_siglog, events_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sec_siglog_items[] = {
     {"version", NULL, offsetof(nmea_ubx_sec_siglog, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_events", NULL, offsetof(nmea_ubx_sec_siglog, num_events), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6100,7 +6192,7 @@ static const nmea_ubx_item ubx_nav2_sbas_channel_items[] = {
     {"ic", NULL, offsetof(nmea_ubx_nav2_sbas_channel, ic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav2_sbas_channels_group = {ubx_nav2_sbas_channel_items, 9, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sbas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SBAS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav2_sbas_channel), 0, offsetof(nmea_ubx_nav2_sbas, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav2_sbas_channels_group = {ubx_nav2_sbas_channel_items, 9, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sbas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SBAS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav2_sbas_channel), 0, offsetof(nmea_ubx_nav2_sbas, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav2_sbas_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_sbas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"geo", NULL, offsetof(nmea_ubx_nav2_sbas, geo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6151,7 +6243,7 @@ static const nmea_ubx_item ubx_nav2_sat_sv_items[] = {
     {"do_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, do_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 22, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav2_sat_svs_group = {ubx_nav2_sat_sv_items, 24, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sat, num_svs), 0, 0, 65535, NMEA_UBX_NAV2_SAT_SVS_MAX, 12, sizeof(nmea_ubx_nav2_sat_sv), 0, offsetof(nmea_ubx_nav2_sat, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav2_sat_svs_group = {ubx_nav2_sat_sv_items, 24, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sat, num_svs), 0, 0, 65535, NMEA_UBX_NAV2_SAT_SVS_MAX, 12, sizeof(nmea_ubx_nav2_sat_sv), 0, offsetof(nmea_ubx_nav2_sat, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav2_sat_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_sat, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav2_sat, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6198,7 +6290,7 @@ static const nmea_ubx_item ubx_nav2_slas_correction_items[] = {
 
 static const nmea_ubx_scale ubx_nav2_slas_gms_lon_scale = {1000.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_nav2_slas_gms_lat_scale = {1000.0, 0.0, true, NULL, 0};
-static const nmea_ubx_group ubx_nav2_slas_corrections_group = {ubx_nav2_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav2_slas_correction), 0, offsetof(nmea_ubx_nav2_slas, corrections_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav2_slas_corrections_group = {ubx_nav2_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav2_slas_correction), 0, offsetof(nmea_ubx_nav2_slas, corrections_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav2_slas_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_slas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav2_slas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6242,7 +6334,7 @@ static const nmea_ubx_item ubx_nav2_sig_signal_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_nav2_sig_signal, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_nav2_sig_signals_group = {ubx_nav2_sig_signal_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sig, num_sigs), 0, 0, 65535, NMEA_UBX_NAV2_SIG_SIGNALS_MAX, 16, sizeof(nmea_ubx_nav2_sig_signal), 0, offsetof(nmea_ubx_nav2_sig, signals_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_nav2_sig_signals_group = {ubx_nav2_sig_signal_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sig, num_sigs), 0, 0, 65535, NMEA_UBX_NAV2_SIG_SIGNALS_MAX, 16, sizeof(nmea_ubx_nav2_sig_signal), 0, offsetof(nmea_ubx_nav2_sig, signals_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_nav2_sig_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_sig, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"version", NULL, offsetof(nmea_ubx_nav2_sig, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6353,7 +6445,7 @@ static const nmea_ubx_item ubx_casic_nav_gpsinfo_sv_items[] = {
     {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_casic_nav_gpsinfo_svs_group = {ubx_casic_nav_gpsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_gpsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_gpsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_gpsinfo, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_casic_nav_gpsinfo_svs_group = {ubx_casic_nav_gpsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_gpsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_gpsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_gpsinfo, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_casic_nav_gpsinfo_items[] = {
     {"run_time", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6381,7 +6473,7 @@ static const nmea_ubx_item ubx_casic_nav_bdsinfo_sv_items[] = {
     {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_casic_nav_bdsinfo_svs_group = {ubx_casic_nav_bdsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_bdsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_bdsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_bdsinfo, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_casic_nav_bdsinfo_svs_group = {ubx_casic_nav_bdsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_bdsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_bdsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_bdsinfo, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_casic_nav_bdsinfo_items[] = {
     {"run_time", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6409,7 +6501,7 @@ static const nmea_ubx_item ubx_casic_nav_glninfo_sv_items[] = {
     {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_casic_nav_glninfo_svs_group = {ubx_casic_nav_glninfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_glninfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_glninfo_sv), 0, offsetof(nmea_ubx_casic_nav_glninfo, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_casic_nav_glninfo_svs_group = {ubx_casic_nav_glninfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_glninfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_glninfo_sv), 0, offsetof(nmea_ubx_casic_nav_glninfo, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_casic_nav_glninfo_items[] = {
     {"run_time", NULL, offsetof(nmea_ubx_casic_nav_glninfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_glninfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6474,6 +6566,49 @@ static const nmea_ubx_item ubx_casic_mon_ver_poll_items[1] = {{"", NULL, 0, 0, 0
 static const nmea_ubx_item ubx_casic_mon_ver_items[] = {
     {"sw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false},
     {"hw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* SBF 4000 rev 3: meas_extra */
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_mp_correction_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_smoothing_corr_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_scale = {10000.0, 0.0, true, ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_specials, 1};
+static const nmea_ubx_scale ubx_sbf_meas_extra_meas_extra_channel_entry_car_mp_corr_scale = {512.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sbf_meas_extra_meas_extra_channel_entry_items[] = {
+    {"rx_channel", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, rx_channel), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"signal_type", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, signal_type), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_lo", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, sig_idx_lo), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"antenna_id", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, antenna_id), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"mp_correction", &ubx_sbf_meas_extra_meas_extra_channel_entry_mp_correction_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, mp_correction), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"smoothing_corr", &ubx_sbf_meas_extra_meas_extra_channel_entry_smoothing_corr_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, smoothing_corr), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"code_var", &ubx_sbf_meas_extra_meas_extra_channel_entry_code_var_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, code_var), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"carrier_var", &ubx_sbf_meas_extra_meas_extra_channel_entry_carrier_var_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, carrier_var), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lock_time", &ubx_sbf_meas_extra_meas_extra_channel_entry_lock_time_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, lock_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cum_loss_cont", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, cum_loss_cont), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"car_mp_corr", &ubx_sbf_meas_extra_meas_extra_channel_entry_car_mp_corr_scale, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, car_mp_corr), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"info", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, info), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"misc", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, misc), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cn0_high_res", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, cn0_high_res), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_hi", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, sig_idx_hi), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_special ubx_sbf_meas_extra_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_tow_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_extra_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_extra_wnc_scale = {1.0, 0.0, false, ubx_sbf_meas_extra_wnc_specials, 1};
+static const nmea_ubx_group ubx_sbf_meas_extra_meas_extra_channel_group = {ubx_sbf_meas_extra_meas_extra_channel_entry_items, 16, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_meas_extra, n), 0, 0, 65535, NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX, 16, sizeof(nmea_ubx_sbf_meas_extra_meas_extra_channel_entry), 0, offsetof(nmea_ubx_sbf_meas_extra, meas_extra_channel_count), 1, offsetof(nmea_ubx_sbf_meas_extra, sb_length), "sb_length", NULL, NULL, 0, 0};
+static const nmea_ubx_item ubx_sbf_meas_extra_items[] = {
+    {"tow", &ubx_sbf_meas_extra_tow_scale, offsetof(nmea_ubx_sbf_meas_extra, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_meas_extra_wnc_scale, offsetof(nmea_ubx_sbf_meas_extra, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n", NULL, offsetof(nmea_ubx_sbf_meas_extra, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb_length", NULL, offsetof(nmea_ubx_sbf_meas_extra, sb_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler_var_factor", NULL, offsetof(nmea_ubx_sbf_meas_extra, doppler_var_factor), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_extra_channel", &ubx_sbf_meas_extra_meas_extra_channel_group, offsetof(nmea_ubx_sbf_meas_extra, meas_extra_channel), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 4001 rev 0: pvt_dop */
@@ -6697,13 +6832,58 @@ static const nmea_ubx_special ubx_sbf_sat_visibility_tow_specials[] = {{42949672
 static const nmea_ubx_scale ubx_sbf_sat_visibility_tow_scale = {1.0, 0.0, false, ubx_sbf_sat_visibility_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_sat_visibility_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_sat_visibility_wnc_scale = {1.0, 0.0, false, ubx_sbf_sat_visibility_wnc_specials, 1};
-static const nmea_ubx_group ubx_sbf_sat_visibility_sat_info_group = {ubx_sbf_sat_visibility_sat_info_entry_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_sat_visibility, n), 0, 0, 65535, NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX, 8, sizeof(nmea_ubx_sbf_sat_visibility_sat_info_entry), 0, offsetof(nmea_ubx_sbf_sat_visibility, sat_info_count), 1, offsetof(nmea_ubx_sbf_sat_visibility, sb_length), "sb_length"};
+static const nmea_ubx_group ubx_sbf_sat_visibility_sat_info_group = {ubx_sbf_sat_visibility_sat_info_entry_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_sat_visibility, n), 0, 0, 65535, NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX, 8, sizeof(nmea_ubx_sbf_sat_visibility_sat_info_entry), 0, offsetof(nmea_ubx_sbf_sat_visibility, sat_info_count), 1, offsetof(nmea_ubx_sbf_sat_visibility, sb_length), "sb_length", NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sbf_sat_visibility_items[] = {
     {"tow", &ubx_sbf_sat_visibility_tow_scale, offsetof(nmea_ubx_sbf_sat_visibility, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_sat_visibility_wnc_scale, offsetof(nmea_ubx_sbf_sat_visibility, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
     {"n", NULL, offsetof(nmea_ubx_sbf_sat_visibility, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"sb_length", NULL, offsetof(nmea_ubx_sbf_sat_visibility, sb_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"sat_info", &ubx_sbf_sat_visibility_sat_info_group, offsetof(nmea_ubx_sbf_sat_visibility, sat_info), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 4013 rev 0: channel_status */
+static const nmea_ubx_item ubx_sbf_channel_status_channel_state_info_entry_items[] = {
+    {"antenna", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, antenna), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, reserved), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tracking_status", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, tracking_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pvt_status", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, pvt_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pvt_info", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, pvt_info), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_state_info_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_special ubx_sbf_channel_status_channel_sat_info_entry_freq_nr_specials[] = {{0, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_channel_status_channel_sat_info_entry_freq_nr_scale = {1.0, 0.0, false, ubx_sbf_channel_status_channel_sat_info_entry_freq_nr_specials, 1};
+static const nmea_ubx_special ubx_sbf_channel_status_channel_sat_info_entry_elevation_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_channel_status_channel_sat_info_entry_elevation_scale = {1.0, 0.0, false, ubx_sbf_channel_status_channel_sat_info_entry_elevation_specials, 1};
+static const nmea_ubx_item ubx_sbf_channel_status_channel_sat_info_entry_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq_nr", &ubx_sbf_channel_status_channel_sat_info_entry_freq_nr_scale, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, freq_nr), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, reserved), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azimuth_rise_set", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, azimuth_rise_set), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azimuth", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, azimuth), 0, 0, NMEA_UBX_ITEM_PART, 9, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rise_set", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, rise_set), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_status", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, health_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elevation", &ubx_sbf_channel_status_channel_sat_info_entry_elevation_scale, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, elevation), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n2", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, n2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_channel", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, rx_channel), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_special ubx_sbf_channel_status_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_channel_status_tow_scale = {1.0, 0.0, false, ubx_sbf_channel_status_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_channel_status_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_channel_status_wnc_scale = {1.0, 0.0, false, ubx_sbf_channel_status_wnc_specials, 1};
+static const nmea_ubx_group ubx_sbf_channel_status_channel_state_info_group = {ubx_sbf_channel_status_channel_state_info_entry_items, 6, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, n2), 0, 0, 65535, NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_STATE_INFO_MAX, 8, sizeof(nmea_ubx_sbf_channel_status_channel_state_info_entry), 0, offsetof(nmea_ubx_sbf_channel_status, channel_state_info_count), 1, offsetof(nmea_ubx_sbf_channel_status, sb2_length), "sb2_length", NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_sbf_channel_status_channel_sat_info_group = {ubx_sbf_channel_status_channel_sat_info_entry_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_channel_status, n), 0, 0, 65535, NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_SAT_INFO_MAX, 12, sizeof(nmea_ubx_sbf_channel_status_channel_sat_info_entry), 0, offsetof(nmea_ubx_sbf_channel_status, channel_sat_info_count), 1, offsetof(nmea_ubx_sbf_channel_status, sb1_length), "sb1_length", &ubx_sbf_channel_status_channel_state_info_group, "channel_state_info", offsetof(nmea_ubx_sbf_channel_status, channel_state_info), offsetof(nmea_ubx_sbf_channel_status_channel_sat_info_entry, channel_state_info_first)};
+static const nmea_ubx_item ubx_sbf_channel_status_items[] = {
+    {"tow", &ubx_sbf_channel_status_tow_scale, offsetof(nmea_ubx_sbf_channel_status, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_channel_status_wnc_scale, offsetof(nmea_ubx_sbf_channel_status, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n", NULL, offsetof(nmea_ubx_sbf_channel_status, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb1_length", NULL, offsetof(nmea_ubx_sbf_channel_status, sb1_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb2_length", NULL, offsetof(nmea_ubx_sbf_channel_status, sb2_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved", NULL, offsetof(nmea_ubx_sbf_channel_status, reserved), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channel_sat_info", &ubx_sbf_channel_status_channel_sat_info_group, offsetof(nmea_ubx_sbf_channel_status, channel_sat_info), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 4014 rev 1: receiver_status */
@@ -6729,7 +6909,7 @@ static const nmea_ubx_special ubx_sbf_receiver_status_cmd_count_specials[] = {{0
 static const nmea_ubx_scale ubx_sbf_receiver_status_cmd_count_scale = {1.0, 0.0, false, ubx_sbf_receiver_status_cmd_count_specials, 1};
 static const nmea_ubx_special ubx_sbf_receiver_status_temperature_specials[] = {{0, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_receiver_status_temperature_scale = {1.0, 0.0, false, ubx_sbf_receiver_status_temperature_specials, 1};
-static const nmea_ubx_group ubx_sbf_receiver_status_agc_state_group = {ubx_sbf_receiver_status_agc_state_entry_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_receiver_status, n), 0, 0, 65535, NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX, 4, sizeof(nmea_ubx_sbf_receiver_status_agc_state_entry), 0, offsetof(nmea_ubx_sbf_receiver_status, agc_state_count), 1, offsetof(nmea_ubx_sbf_receiver_status, sb_length), "sb_length"};
+static const nmea_ubx_group ubx_sbf_receiver_status_agc_state_group = {ubx_sbf_receiver_status_agc_state_entry_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_receiver_status, n), 0, 0, 65535, NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX, 4, sizeof(nmea_ubx_sbf_receiver_status_agc_state_entry), 0, offsetof(nmea_ubx_sbf_receiver_status, agc_state_count), 1, offsetof(nmea_ubx_sbf_receiver_status, sb_length), "sb_length", NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sbf_receiver_status_items[] = {
     {"tow", &ubx_sbf_receiver_status_tow_scale, offsetof(nmea_ubx_sbf_receiver_status, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_receiver_status_wnc_scale, offsetof(nmea_ubx_sbf_receiver_status, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6772,6 +6952,93 @@ static const nmea_ubx_item ubx_sbf_receiver_status_items[] = {
     {"cmd_count", &ubx_sbf_receiver_status_cmd_count_scale, offsetof(nmea_ubx_sbf_receiver_status, cmd_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
     {"temperature", &ubx_sbf_receiver_status_temperature_scale, offsetof(nmea_ubx_sbf_receiver_status, temperature), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
     {"agc_state", &ubx_sbf_receiver_status_agc_state_group, offsetof(nmea_ubx_sbf_receiver_status, agc_state), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 4027 rev 1: meas_epoch */
+static const nmea_ubx_special ubx_sbf_meas_epoch_type2_entry_lock_time_specials[] = {{255, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_lock_time_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_type2_entry_lock_time_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type2_entry_cn0_specials[] = {{255, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_cn0_scale = {4.0, 0.0, true, ubx_sbf_meas_epoch_type2_entry_cn0_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type2_entry_carrier_msb_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_carrier_msb_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_type2_entry_carrier_msb_specials, 1};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_code_offset_lsb_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_carrier_lsb_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type2_entry_doppler_offset_lsb_scale = {10000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sbf_meas_epoch_type2_entry_items[] = {
+    {"signal_type", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, signal_type), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_lo", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, sig_idx_lo), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"antenna_id", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, antenna_id), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"lock_time", &ubx_sbf_meas_epoch_type2_entry_lock_time_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, lock_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cn0", &ubx_sbf_meas_epoch_type2_entry_cn0_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, cn0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"offsets_msb", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, offsets_msb), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_offset_msb", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, code_offset_msb), 0, 0, NMEA_UBX_ITEM_PART_SIGNED, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler_offset_msb", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, doppler_offset_msb), 0, 0, NMEA_UBX_ITEM_PART_SIGNED, 5, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_msb", &ubx_sbf_meas_epoch_type2_entry_carrier_msb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, carrier_msb), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"obs_info", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, obs_info), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_smoothed", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, pr_smoothed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"half_cycle_ambiguity", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, half_cycle_ambiguity), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_hi", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, sig_idx_hi), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_offset_lsb", &ubx_sbf_meas_epoch_type2_entry_code_offset_lsb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, code_offset_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"carrier_lsb", &ubx_sbf_meas_epoch_type2_entry_carrier_lsb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, carrier_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"doppler_offset_lsb", &ubx_sbf_meas_epoch_type2_entry_doppler_offset_lsb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, doppler_offset_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type2_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_code_lsb_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type1_entry_doppler_specials[] = {{-2147483648, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_doppler_scale = {10000.0, 0.0, true, ubx_sbf_meas_epoch_type1_entry_doppler_specials, 1};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_carrier_lsb_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type1_entry_carrier_msb_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_carrier_msb_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_type1_entry_carrier_msb_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type1_entry_cn0_specials[] = {{255, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_cn0_scale = {4.0, 0.0, true, ubx_sbf_meas_epoch_type1_entry_cn0_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_epoch_type1_entry_lock_time_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_type1_entry_lock_time_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_type1_entry_lock_time_specials, 1};
+static const nmea_ubx_item ubx_sbf_meas_epoch_type1_entry_items[] = {
+    {"rx_channel", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, rx_channel), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"signal_type", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, signal_type), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_lo", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, sig_idx_lo), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"antenna_id", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, antenna_id), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"svid", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"misc", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, misc), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_msb", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, code_msb), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_lsb", &ubx_sbf_meas_epoch_type1_entry_code_lsb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, code_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"doppler", &ubx_sbf_meas_epoch_type1_entry_doppler_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, doppler), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"carrier_lsb", &ubx_sbf_meas_epoch_type1_entry_carrier_lsb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, carrier_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"carrier_msb", &ubx_sbf_meas_epoch_type1_entry_carrier_msb_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, carrier_msb), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cn0", &ubx_sbf_meas_epoch_type1_entry_cn0_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, cn0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lock_time", &ubx_sbf_meas_epoch_type1_entry_lock_time_scale, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, lock_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"obs_info", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, obs_info), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_smoothed", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, pr_smoothed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"half_cycle_ambiguity", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, half_cycle_ambiguity), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_idx_hi", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, sig_idx_hi), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"n2", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, n2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"trailing", NULL, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, trailing), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+static const nmea_ubx_special ubx_sbf_meas_epoch_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_tow_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_meas_epoch_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_wnc_scale = {1.0, 0.0, false, ubx_sbf_meas_epoch_wnc_specials, 1};
+static const nmea_ubx_scale ubx_sbf_meas_epoch_cum_clk_jumps_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_sbf_meas_epoch_type2_group = {ubx_sbf_meas_epoch_type2_entry_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, n2), 0, 0, 65535, NMEA_UBX_SBF_MEAS_EPOCH_TYPE2_MAX, 12, sizeof(nmea_ubx_sbf_meas_epoch_type2_entry), 0, offsetof(nmea_ubx_sbf_meas_epoch, type2_count), 1, offsetof(nmea_ubx_sbf_meas_epoch, sb2_length), "sb2_length", NULL, NULL, 0, 0};
+static const nmea_ubx_group ubx_sbf_meas_epoch_type1_group = {ubx_sbf_meas_epoch_type1_entry_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_meas_epoch, n1), 0, 0, 65535, NMEA_UBX_SBF_MEAS_EPOCH_TYPE1_MAX, 20, sizeof(nmea_ubx_sbf_meas_epoch_type1_entry), 0, offsetof(nmea_ubx_sbf_meas_epoch, type1_count), 1, offsetof(nmea_ubx_sbf_meas_epoch, sb1_length), "sb1_length", &ubx_sbf_meas_epoch_type2_group, "type2", offsetof(nmea_ubx_sbf_meas_epoch, type2), offsetof(nmea_ubx_sbf_meas_epoch_type1_entry, type2_first)};
+static const nmea_ubx_item ubx_sbf_meas_epoch_items[] = {
+    {"tow", &ubx_sbf_meas_epoch_tow_scale, offsetof(nmea_ubx_sbf_meas_epoch, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_meas_epoch_wnc_scale, offsetof(nmea_ubx_sbf_meas_epoch, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n1", NULL, offsetof(nmea_ubx_sbf_meas_epoch, n1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb1_length", NULL, offsetof(nmea_ubx_sbf_meas_epoch, sb1_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sb2_length", NULL, offsetof(nmea_ubx_sbf_meas_epoch, sb2_length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"common_flags", NULL, offsetof(nmea_ubx_sbf_meas_epoch, common_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"multipath_mitigation", NULL, offsetof(nmea_ubx_sbf_meas_epoch, multipath_mitigation), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_smoothing", NULL, offsetof(nmea_ubx_sbf_meas_epoch, code_smoothing), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_steering", NULL, offsetof(nmea_ubx_sbf_meas_epoch, clock_steering), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"high_dynamics", NULL, offsetof(nmea_ubx_sbf_meas_epoch, high_dynamics), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"e6b_used", NULL, offsetof(nmea_ubx_sbf_meas_epoch, e6b_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"scrambling", NULL, offsetof(nmea_ubx_sbf_meas_epoch, scrambling), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"cum_clk_jumps", &ubx_sbf_meas_epoch_cum_clk_jumps_scale, offsetof(nmea_ubx_sbf_meas_epoch, cum_clk_jumps), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved", NULL, offsetof(nmea_ubx_sbf_meas_epoch, reserved), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type1", &ubx_sbf_meas_epoch_type1_group, offsetof(nmea_ubx_sbf_meas_epoch, type1), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 4043 rev 0: base_vector_cart */
@@ -6825,7 +7092,7 @@ static const nmea_ubx_special ubx_sbf_base_vector_cart_tow_specials[] = {{429496
 static const nmea_ubx_scale ubx_sbf_base_vector_cart_tow_scale = {1.0, 0.0, false, ubx_sbf_base_vector_cart_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_base_vector_cart_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_base_vector_cart_wnc_scale = {1.0, 0.0, false, ubx_sbf_base_vector_cart_wnc_specials, 1};
-static const nmea_ubx_group ubx_sbf_base_vector_cart_vector_info_group = {ubx_sbf_base_vector_cart_vector_info_entry_items, 21, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_base_vector_cart, n), 0, 0, 65535, NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX, 52, sizeof(nmea_ubx_sbf_base_vector_cart_vector_info_entry), 0, offsetof(nmea_ubx_sbf_base_vector_cart, vector_info_count), 1, offsetof(nmea_ubx_sbf_base_vector_cart, sb_length), "sb_length"};
+static const nmea_ubx_group ubx_sbf_base_vector_cart_vector_info_group = {ubx_sbf_base_vector_cart_vector_info_entry_items, 21, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sbf_base_vector_cart, n), 0, 0, 65535, NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX, 52, sizeof(nmea_ubx_sbf_base_vector_cart_vector_info_entry), 0, offsetof(nmea_ubx_sbf_base_vector_cart, vector_info_count), 1, offsetof(nmea_ubx_sbf_base_vector_cart, sb_length), "sb_length", NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sbf_base_vector_cart_items[] = {
     {"tow", &ubx_sbf_base_vector_cart_tow_scale, offsetof(nmea_ubx_sbf_base_vector_cart, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_base_vector_cart_wnc_scale, offsetof(nmea_ubx_sbf_base_vector_cart, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -7156,7 +7423,7 @@ static const nmea_ubx_scale ubx_sirf_measured_nav_vy_scale = {8.0, 0.0, true, NU
 static const nmea_ubx_scale ubx_sirf_measured_nav_vz_scale = {8.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_sirf_measured_nav_hdop_scale = {5.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_sirf_measured_nav_tow_scale = {100.0, 0.0, true, NULL, 0};
-static const nmea_ubx_group ubx_sirf_measured_nav_channels_group = {ubx_sirf_measured_nav_channel_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 12, 0, 65535, NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX, 1, sizeof(nmea_ubx_sirf_measured_nav_channel), 0, offsetof(nmea_ubx_sirf_measured_nav, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sirf_measured_nav_channels_group = {ubx_sirf_measured_nav_channel_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 12, 0, 65535, NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX, 1, sizeof(nmea_ubx_sirf_measured_nav_channel), 0, offsetof(nmea_ubx_sirf_measured_nav, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sirf_measured_nav_items[] = {
     {"x", NULL, offsetof(nmea_ubx_sirf_measured_nav, x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"y", NULL, offsetof(nmea_ubx_sirf_measured_nav, y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -7214,7 +7481,7 @@ static const nmea_ubx_item ubx_sirf_tracker_data_channel_items[] = {
 };
 
 static const nmea_ubx_scale ubx_sirf_tracker_data_tow_scale = {100.0, 0.0, true, NULL, 0};
-static const nmea_ubx_group ubx_sirf_tracker_data_channels_group = {ubx_sirf_tracker_data_channel_items, 22, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX, 15, sizeof(nmea_ubx_sirf_tracker_data_channel), 0, offsetof(nmea_ubx_sirf_tracker_data, channels_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sirf_tracker_data_channels_group = {ubx_sirf_tracker_data_channel_items, 22, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX, 15, sizeof(nmea_ubx_sirf_tracker_data_channel), 0, offsetof(nmea_ubx_sirf_tracker_data, channels_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sirf_tracker_data_items[] = {
     {"week", NULL, offsetof(nmea_ubx_sirf_tracker_data, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"tow", &ubx_sirf_tracker_data_tow_scale, offsetof(nmea_ubx_sirf_tracker_data, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -7268,7 +7535,7 @@ static const nmea_ubx_item ubx_sirf_visible_list_sv_items[] = {
     {"elevation", NULL, offsetof(nmea_ubx_sirf_visible_list_sv, elevation), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_sirf_visible_list_svs_group = {ubx_sirf_visible_list_sv_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sirf_visible_list, num_visible), 0, 0, 65535, NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX, 5, sizeof(nmea_ubx_sirf_visible_list_sv), 0, offsetof(nmea_ubx_sirf_visible_list, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sirf_visible_list_svs_group = {ubx_sirf_visible_list_sv_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sirf_visible_list, num_visible), 0, 0, 65535, NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX, 5, sizeof(nmea_ubx_sirf_visible_list_sv), 0, offsetof(nmea_ubx_sirf_visible_list, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sirf_visible_list_items[] = {
     {"num_visible", NULL, offsetof(nmea_ubx_sirf_visible_list, num_visible), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"svs", &ubx_sirf_visible_list_svs_group, offsetof(nmea_ubx_sirf_visible_list, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
@@ -7361,7 +7628,7 @@ static const nmea_ubx_item ubx_sirf_switch_to_nmea_sentence_items[] = {
     {"checksum", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea_sentence, checksum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_sirf_switch_to_nmea_sentences_group = {ubx_sirf_switch_to_nmea_sentence_items, 2, NMEA_UBX_COUNT_FIXED, 1, 0, 10, 0, 65535, NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX, 2, sizeof(nmea_ubx_sirf_switch_to_nmea_sentence), 2, offsetof(nmea_ubx_sirf_switch_to_nmea, sentences_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_sirf_switch_to_nmea_sentences_group = {ubx_sirf_switch_to_nmea_sentence_items, 2, NMEA_UBX_COUNT_FIXED, 1, 0, 10, 0, 65535, NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX, 2, sizeof(nmea_ubx_sirf_switch_to_nmea_sentence), 2, offsetof(nmea_ubx_sirf_switch_to_nmea, sentences_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_sirf_switch_to_nmea_items[] = {
     {"mode", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea, mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"sentences", &ubx_sirf_switch_to_nmea_sentences_group, offsetof(nmea_ubx_sirf_switch_to_nmea, sentences), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -7482,7 +7749,7 @@ static const nmea_ubx_item ubx_skytraq_raw_meas_mea_items[] = {
     {"coherent_integration", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, coherent_integration), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_skytraq_raw_meas_meas_group = {ubx_skytraq_raw_meas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_raw_meas, num_meas), 0, 0, 65535, NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX, 23, sizeof(nmea_ubx_skytraq_raw_meas_mea), 0, offsetof(nmea_ubx_skytraq_raw_meas, meas_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_skytraq_raw_meas_meas_group = {ubx_skytraq_raw_meas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_raw_meas, num_meas), 0, 0, 65535, NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX, 23, sizeof(nmea_ubx_skytraq_raw_meas_mea), 0, offsetof(nmea_ubx_skytraq_raw_meas, meas_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_skytraq_raw_meas_items[] = {
     {"iod", NULL, offsetof(nmea_ubx_skytraq_raw_meas, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_meas", NULL, offsetof(nmea_ubx_skytraq_raw_meas, num_meas), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -7510,7 +7777,7 @@ static const nmea_ubx_item ubx_skytraq_sv_ch_status_sv_items[] = {
     {"differential_fix", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, differential_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_skytraq_sv_ch_status_svs_group = {ubx_skytraq_sv_ch_status_sv_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_sv_ch_status, num_sv), 0, 0, 65535, NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX, 10, sizeof(nmea_ubx_skytraq_sv_ch_status_sv), 0, offsetof(nmea_ubx_skytraq_sv_ch_status, svs_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_skytraq_sv_ch_status_svs_group = {ubx_skytraq_sv_ch_status_sv_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_sv_ch_status, num_sv), 0, 0, 65535, NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX, 10, sizeof(nmea_ubx_skytraq_sv_ch_status_sv), 0, offsetof(nmea_ubx_skytraq_sv_ch_status, svs_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_skytraq_sv_ch_status_items[] = {
     {"iod", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"num_sv", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -7569,7 +7836,7 @@ static const nmea_ubx_item ubx_unicore_obsvm_b_observation_items[] = {
     {"l2c_flag", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, l2c_flag), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 26, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_unicore_obsvm_b_observations_group = {ubx_unicore_obsvm_b_observation_items, 17, NMEA_UBX_COUNT_FIELD, 4, offsetof(nmea_ubx_unicore_obsvm_b, num_obs), 0, 0, 65535, NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX, 40, sizeof(nmea_ubx_unicore_obsvm_b_observation), 0, offsetof(nmea_ubx_unicore_obsvm_b, observations_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_unicore_obsvm_b_observations_group = {ubx_unicore_obsvm_b_observation_items, 17, NMEA_UBX_COUNT_FIELD, 4, offsetof(nmea_ubx_unicore_obsvm_b, num_obs), 0, 0, 65535, NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX, 40, sizeof(nmea_ubx_unicore_obsvm_b_observation), 0, offsetof(nmea_ubx_unicore_obsvm_b, observations_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_unicore_obsvm_b_items[] = {
     {"num_obs", NULL, offsetof(nmea_ubx_unicore_obsvm_b, num_obs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"observations", &ubx_unicore_obsvm_b_observations_group, offsetof(nmea_ubx_unicore_obsvm_b, observations), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
@@ -7747,7 +8014,7 @@ static const nmea_ubx_item ubx_unicore_pvtsln_b_prn_items[] = {
     {"prn", NULL, offsetof(nmea_ubx_unicore_pvtsln_b_prn, prn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
-static const nmea_ubx_group ubx_unicore_pvtsln_b_prns_group = {ubx_unicore_pvtsln_b_prn_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX, 2, sizeof(nmea_ubx_unicore_pvtsln_b_prn), 0, offsetof(nmea_ubx_unicore_pvtsln_b, prns_count), 0, 0, NULL};
+static const nmea_ubx_group ubx_unicore_pvtsln_b_prns_group = {ubx_unicore_pvtsln_b_prn_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX, 2, sizeof(nmea_ubx_unicore_pvtsln_b_prn), 0, offsetof(nmea_ubx_unicore_pvtsln_b, prns_count), 0, 0, NULL, NULL, NULL, 0, 0};
 static const nmea_ubx_item ubx_unicore_pvtsln_b_items[] = {
     {"best_pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
     {"best_pos_height", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_height), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -16572,9 +16839,12 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_casic_cfg_rate_fast,
     NULL,
     ubx_casic_mon_ver_fast,
+    NULL,
     ubx_sbf_pvt_dop_fast,
     ubx_sbf_pvt_cartesian_fast,
     ubx_sbf_pvt_geodetic_fast,
+    NULL,
+    NULL,
     NULL,
     NULL,
     NULL,
@@ -17051,11 +17321,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_rate", "CFG-RATE", 0x06, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_cfg_rate_items, 2, 0, offsetof(nmea_ubx_casic_cfg_rate, trailing)},
     {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_mon_ver_poll_items, 0, 0, offsetof(nmea_ubx_casic_mon_ver_poll, trailing)},
     {"mon_ver", "MON-VER", 0x0A, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 64, -1, 0, ubx_casic_mon_ver_items, 2, 0, offsetof(nmea_ubx_casic_mon_ver, trailing)},
+    {"meas_extra", "4000 rev 3", 0xA0, 0x6F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_meas_extra_items, 6, 0, offsetof(nmea_ubx_sbf_meas_extra, trailing)},
     {"pvt_dop", "4001 rev 0", 0xA1, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, 24, -1, 0, ubx_sbf_pvt_dop_items, 10, 0, offsetof(nmea_ubx_sbf_pvt_dop, trailing)},
     {"pvt_cartesian", "4006 rev 2", 0xA6, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_cartesian_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_cartesian, trailing)},
     {"pvt_geodetic", "4007 rev 2", 0xA7, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_geodetic_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_geodetic, trailing)},
     {"sat_visibility", "4012 rev 0", 0xAC, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_sat_visibility_items, 5, 0, offsetof(nmea_ubx_sbf_sat_visibility, trailing)},
+    {"channel_status", "4013 rev 0", 0xAD, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_channel_status_items, 7, 0, offsetof(nmea_ubx_sbf_channel_status, trailing)},
     {"receiver_status", "4014 rev 1", 0xAE, 0x2F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_receiver_status_items, 41, 0, offsetof(nmea_ubx_sbf_receiver_status, trailing)},
+    {"meas_epoch", "4027 rev 1", 0xBB, 0x2F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_meas_epoch_items, 15, 0, offsetof(nmea_ubx_sbf_meas_epoch, trailing)},
     {"base_vector_cart", "4043 rev 0", 0xCB, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, -1, -1, 0, ubx_sbf_base_vector_cart_items, 5, 0, offsetof(nmea_ubx_sbf_base_vector_cart, trailing)},
     {"pos_cov_cartesian", "5905 rev 0", 0x11, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_pos_cov_cartesian_items, 17, 0, offsetof(nmea_ubx_sbf_pos_cov_cartesian, trailing)},
     {"pos_cov_geodetic", "5906 rev 0", 0x12, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_pos_cov_geodetic_items, 17, 0, offsetof(nmea_ubx_sbf_pos_cov_geodetic, trailing)},
@@ -18305,54 +18578,57 @@ static const struct {
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 398, 399}, /* CASIC CFG-MSG */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 400, 401}, /* CASIC CFG-RATE */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 402, 403}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 404, 404}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 405, 405}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 406, 406}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAC, 0x0F}, 407, 407}, /* SBF 4012 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAE, 0x2F}, 408, 408}, /* SBF 4014 rev 1 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xCB, 0x0F}, 409, 409}, /* SBF 4043 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 410, 410}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 411, 411}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 412, 412}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 413, 413}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x17, 0x17}, 414, 414}, /* SBF 5911 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 415, 415}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x21, 0x17}, 416, 416}, /* SBF 5921 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 417, 417}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 418, 418}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 419, 419}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 420, 420}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 421, 421}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 422, 422}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 423, 423}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 424, 424}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 425, 425}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 426, 426}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 427, 427}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 428, 428}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 429, 429}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 430, 430}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 431, 431}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 432, 432}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 433, 433}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 434, 434}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 435, 435}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 436, 436}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 437, 437}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 438, 438}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 439, 439}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 440, 440}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 441, 441}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 442, 442}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 443, 443}, /* SKYTRAQ 0xE0 */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x0C, 0x00}, 444, 444}, /* UNICORE OBSVMB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x25, 0x00}, 445, 445}, /* UNICORE VERSIONB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x8E, 0x00}, 446, 446}, /* UNICORE ADRNAVB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xF0, 0x00}, 447, 447}, /* UNICORE BESTNAVXYZB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x01}, 448, 448}, /* UNICORE RTKSTATUSB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xCC, 0x03}, 449, 449}, /* UNICORE UNIHEADINGB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x03}, 450, 450}, /* UNICORE PVTSLNB */
-    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x46, 0x08}, 451, 451}, /* UNICORE BESTNAVB */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA0, 0x6F}, 404, 404}, /* SBF 4000 rev 3 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 405, 405}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 406, 406}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 407, 407}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAC, 0x0F}, 408, 408}, /* SBF 4012 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAD, 0x0F}, 409, 409}, /* SBF 4013 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xAE, 0x2F}, 410, 410}, /* SBF 4014 rev 1 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xBB, 0x2F}, 411, 411}, /* SBF 4027 rev 1 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xCB, 0x0F}, 412, 412}, /* SBF 4043 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 413, 413}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 414, 414}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 415, 415}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 416, 416}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x17, 0x17}, 417, 417}, /* SBF 5911 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 418, 418}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x21, 0x17}, 419, 419}, /* SBF 5921 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 420, 420}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 421, 421}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 422, 422}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 423, 423}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 424, 424}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 425, 425}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 426, 426}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 427, 427}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 428, 428}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 429, 429}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 430, 430}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 431, 431}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 432, 432}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 433, 433}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 434, 434}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 435, 435}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 436, 436}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 437, 437}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 438, 438}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 439, 439}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 440, 440}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 441, 441}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 442, 442}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 443, 443}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 444, 444}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 445, 445}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 446, 446}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x0C, 0x00}, 447, 447}, /* UNICORE OBSVMB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x25, 0x00}, 448, 448}, /* UNICORE VERSIONB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x8E, 0x00}, 449, 449}, /* UNICORE ADRNAVB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xF0, 0x00}, 450, 450}, /* UNICORE BESTNAVXYZB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x01}, 451, 451}, /* UNICORE RTKSTATUSB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xCC, 0x03}, 452, 452}, /* UNICORE UNIHEADINGB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x03}, 453, 453}, /* UNICORE PVTSLNB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x46, 0x08}, 454, 454}, /* UNICORE BESTNAVB */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

@@ -105,9 +105,11 @@
 //   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
 //   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
 //   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
-//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
-//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
-//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/meas_extra.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/sat_visibility.yaml, spec/binary/sbf/messages/channel_status.yaml,
+//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/meas_epoch.yaml,
+//   spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
@@ -134,7 +136,7 @@
 //   spec/binary/unicore/messages/bestnav_b.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
 //   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_pos_type.yaml,
-//   spec/enums/unicore_sol_status.yaml (digest 89f2cb32bf49ce72)
+//   spec/enums/unicore_sol_status.yaml (digest 3de73326dea92ea6)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ, UNICORE: spec/binary/<protocol>):
@@ -342,6 +344,13 @@ typedef struct nmea_ubx_group {
                                those after its fields): bytes of its member; 0: entries of entry_bytes */
     uint16_t stride_offset; /* of the stride's member */
     const char *stride_id;  /* the stride's field (errors name it) */
+    const struct nmea_ubx_group *nested; /* the group each entry ends with (SBF's Type-2 sub-blocks after each
+                               Type-1), or NULL: counted by a member of the entry (its count_offset the entry's),
+                               its entries after the entry's stride bytes; every entry's in one array of the
+                               message, an entry's from its index at nested_first */
+    const char *nested_id;  /* the nested group's field (errors and JSON name it) */
+    uint16_t nested_offset; /* of the nested group's array in the message */
+    uint16_t nested_first;  /* of an entry's uint16_t index of its first entry in that array */
 } nmea_ubx_group;
 
 typedef struct {
@@ -377,6 +386,10 @@ typedef enum {
 #ifndef NMEA_UBX_MAX_ENTRIES
 #define NMEA_UBX_MAX_ENTRIES 65535
 #endif
+
+/* A layout holds a group whose entries end with a group of their own (SBF's Type-2 sub-blocks):
+   nmea_ubx.c compiles the interpreter's code for them (left out of a pair that has none). */
+#define NMEA_UBX_NESTED 1
 
 /* nmea_ubx.c decodes each layout the receiver sends with a generated straight-line reader (the
    others, and every payload it refuses, through the one descriptor interpreter, which names the
@@ -592,11 +605,26 @@ typedef enum {
 #ifndef NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX
 #define NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX
+#define NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX
 #define NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_STATE_INFO_MAX
+#define NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_STATE_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_SAT_INFO_MAX
+#define NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_SAT_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX
 #define NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_MEAS_EPOCH_TYPE2_MAX
+#define NMEA_UBX_SBF_MEAS_EPOCH_TYPE2_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_MEAS_EPOCH_TYPE1_MAX
+#define NMEA_UBX_SBF_MEAS_EPOCH_TYPE1_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX
 #define NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
@@ -6183,6 +6211,38 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_casic_mon_ver;
 
+/* One entry of signals (measextrachannelsub sub-blocks) (meas_extra_channel). */
+typedef struct {
+    uint8_t rx_channel; /* Receiver channel */
+    uint8_t signal_type; /* Signal and antenna (bitfield) */
+    uint8_t sig_idx_lo; /* Signal number (its low bits; 31 when sig_idx_hi holds it) (signal_type bits 0-4) */
+    uint8_t antenna_id; /* Antenna (0 main) (signal_type bits 5-7) */
+    int16_t mp_correction; /* Multipath correction of the code (already applied) [m]; raw, value = raw / 1000 */
+    int16_t smoothing_corr; /* Smoothing correction of the code (already applied) [m]; raw, value = raw / 1000 */
+    uint16_t code_var; /* Variance of the code [m²]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t carrier_var; /* Variance of the carrier phase [mcycle²]; raw, value = raw; 65535: do_not_use */
+    uint16_t lock_time; /* Time the carrier phase has been tracked without interruption (clipped to 65534 s) [s]; raw, value = raw; 65535: do_not_use */
+    uint8_t cum_loss_cont; /* Loss-of-continuity counter (modulo 256) */
+    int8_t car_mp_corr; /* Multipath correction of the carrier phase (already applied) [cycle]; raw, value = raw / 512 */
+    uint8_t info; /* Information flags */
+    uint8_t misc; /* C/N0's fraction and the signal number's high bits (bitfield) */
+    uint8_t cn0_high_res; /* C/N0's fraction to add to MeasEpoch's (each 0.03125 dB-Hz) (misc bits 0-2) */
+    uint8_t sig_idx_hi; /* Signal number (32 and above, when sig_idx_lo is 31) (misc bits 3-7) */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_meas_extra_meas_extra_channel_entry;
+
+/* Measurements' additional information (MeasExtra): SBF 4000 rev 3 (id 0x6FA0), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n; /* MeasExtraChannelSub sub-blocks */
+    uint8_t sb_length; /* Bytes of a MeasExtraChannelSub sub-block [byte] */
+    float doppler_var_factor; /* Factor of the Doppler variance from the carrier variance (its bits as sent) */
+    uint16_t meas_extra_channel_count; /* the entries of meas_extra_channel */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_meas_extra_meas_extra_channel_entry meas_extra_channel[NMEA_UBX_SBF_MEAS_EXTRA_MEAS_EXTRA_CHANNEL_MAX]; /* Signals (MeasExtraChannelSub sub-blocks) */
+} nmea_ubx_sbf_meas_extra;
+
 /* Dilutions of precision (DOP): SBF 4001 rev 0 (id 0x0FA1), output. */
 typedef struct {
     uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
@@ -6320,6 +6380,48 @@ typedef struct {
     nmea_ubx_sbf_sat_visibility_sat_info_entry sat_info[NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX]; /* Satellites (SatInfo sub-blocks) */
 } nmea_ubx_sbf_sat_visibility;
 
+/* One entry of antennas tracking the satellite (channelstateinfo sub-blocks) (channel_state_info; every entry of channel_sat_info's in one array). */
+typedef struct {
+    uint8_t antenna; /* Antenna (0 main) */
+    uint8_t reserved; /* Reserved (reserved, as sent) */
+    uint16_t tracking_status; /* Tracking status of each signal (two bits a signal; 0 idle, 1 searching, 2 synchronising, 3 tracking) */
+    uint16_t pvt_status; /* PVT use of each signal (two bits a signal; 0 not used, 1 waiting for an ephemeris, 2 used, 3 rejected) */
+    uint16_t pvt_info; /* Why a signal is rejected from the PVT (a bit a reason) */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_channel_status_channel_state_info_entry;
+
+/* One entry of satellites tracked (channelsatinfo sub-blocks) (channel_sat_info). */
+typedef struct {
+    uint8_t svid; /* Satellite (SBF satellite number) */
+    uint8_t freq_nr; /* GLONASS frequency number plus 8 (1 to 21; reserved for other signals); raw, value = raw; 0: do_not_use */
+    uint16_t reserved; /* Reserved (reserved, as sent) */
+    uint16_t azimuth_rise_set; /* Azimuth and rising or setting (bitfield) */
+    uint16_t azimuth; /* Azimuth (0 north, increasing towards east; 511 not available) [deg] (azimuth_rise_set bits 0-8) */
+    uint8_t rise_set; /* Rising (1), setting (0) or elevation rate unknown (3) (azimuth_rise_set bits 14-15) */
+    uint16_t health_status; /* Health of each signal (two bits a signal; 0 unknown, 1 healthy, 3 unhealthy) */
+    int8_t elevation; /* Elevation above the local horizontal plane [deg]; raw, value = raw; -128: do_not_use */
+    uint8_t n2; /* ChannelStateInfo sub-blocks after this one */
+    uint8_t rx_channel; /* Receiver channel */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+    uint16_t channel_state_info_first; /* the index in channel_state_info of its first entry (n2 of them) */
+} nmea_ubx_sbf_channel_status_channel_sat_info_entry;
+
+/* Status of the tracking channels (ChannelStatus): SBF 4013 rev 0 (id 0x0FAD), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n; /* ChannelSatInfo sub-blocks */
+    uint8_t sb1_length; /* Bytes of a ChannelSatInfo sub-block (its ChannelStateInfo sub-blocks not counted) [byte] */
+    uint8_t sb2_length; /* Bytes of a ChannelStateInfo sub-block [byte] */
+    uint32_t reserved; /* Reserved (reserved, as sent) */
+    uint16_t channel_state_info_count; /* the entries of channel_state_info, every channel_sat_info entry's */
+    uint16_t channel_sat_info_count; /* the entries of channel_sat_info */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_channel_status_channel_state_info_entry channel_state_info[NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_STATE_INFO_MAX]; /* Antennas tracking the satellite (ChannelStateInfo sub-blocks): those of channel_sat_info[k] from its channel_state_info_first on */
+    nmea_ubx_sbf_channel_status_channel_sat_info_entry channel_sat_info[NMEA_UBX_SBF_CHANNEL_STATUS_CHANNEL_SAT_INFO_MAX]; /* Satellites tracked (ChannelSatInfo sub-blocks) */
+} nmea_ubx_sbf_channel_status;
+
 /* One entry of front ends' gain control (agcstate sub-blocks) (agc_state). */
 typedef struct {
     uint8_t front_end_id; /* Front end and antenna (bitfield) */
@@ -6377,6 +6479,74 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_sbf_receiver_status_agc_state_entry agc_state[NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX]; /* Front ends' gain control (AGCState sub-blocks) */
 } nmea_ubx_sbf_receiver_status;
+
+/* One entry of the satellite's other signals (type-2 sub-blocks) (type2; every entry of type1's in one array). */
+typedef struct {
+    uint8_t signal_type; /* Signal and antenna (bitfield) */
+    uint8_t sig_idx_lo; /* Signal number (its low bits; 31 when sig_idx_hi holds it) (signal_type bits 0-4) */
+    uint8_t antenna_id; /* Antenna (0 main) (signal_type bits 5-7) */
+    uint8_t lock_time; /* Time the carrier phase has been tracked without interruption (clipped to 254 s) [s]; raw, value = raw; 255: do_not_use */
+    uint8_t cn0; /* C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz]; raw, value = raw / 4; 255: do_not_use */
+    uint8_t offsets_msb; /* Offsets' most significant bits (bitfield) */
+    int8_t code_offset_msb; /* Code offset's most significant bits (each 65.536 m; two's complement, -4 with code_offset_lsb 0: not available) (offsets_msb bits 0-2) */
+    int8_t doppler_offset_msb; /* Doppler offset's most significant bits (each 6.5536 Hz; two's complement, -16 with doppler_offset_lsb 0: not available) (offsets_msb bits 3-7) */
+    int8_t carrier_msb; /* Carrier phase's most significant bits (each 65.536 cycles); raw, value = raw; -128: do_not_use */
+    uint8_t obs_info; /* Observation information (bitfield) */
+    bool pr_smoothed; /* Pseudorange smoothed by the carrier (obs_info bit 0) */
+    bool half_cycle_ambiguity; /* Half-cycle ambiguity not resolved (obs_info bit 2) */
+    uint8_t sig_idx_hi; /* Signal number (32 and above, when sig_idx_lo is 31) (obs_info bits 3-7) */
+    uint16_t code_offset_lsb; /* Code offset from the Type-1 pseudorange's least significant bits [m]; raw, value = raw / 1000 */
+    uint16_t carrier_lsb; /* Carrier phase's least significant bits [cycle]; raw, value = raw / 1000 */
+    uint16_t doppler_offset_lsb; /* Doppler offset's least significant bits [Hz]; raw, value = raw / 10000 */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_meas_epoch_type2_entry;
+
+/* One entry of satellites' first signals (type-1 sub-blocks) (type1). */
+typedef struct {
+    uint8_t rx_channel; /* Receiver channel */
+    uint8_t signal_type; /* Signal and antenna (bitfield) */
+    uint8_t sig_idx_lo; /* Signal number (its low bits; 31 when sig_idx_hi holds it) (signal_type bits 0-4) */
+    uint8_t antenna_id; /* Antenna (0 main) (signal_type bits 5-7) */
+    uint8_t svid; /* Satellite (SBF satellite number) */
+    uint8_t misc; /* Code's most significant bits (bitfield) */
+    uint8_t code_msb; /* Pseudorange's most significant bits (each 4294967.296 m: CodeMSB × 4294967.296 + CodeLSB) (misc bits 0-3) */
+    uint32_t code_lsb; /* Pseudorange's least significant bits [m]; raw, value = raw / 1000 */
+    int32_t doppler; /* Doppler (positive for an approaching satellite) [Hz]; raw, value = raw / 10000; -2147483648: do_not_use */
+    uint16_t carrier_lsb; /* Carrier phase's least significant bits (relative to the pseudorange) [cycle]; raw, value = raw / 1000 */
+    int8_t carrier_msb; /* Carrier phase's most significant bits (each 65.536 cycles); raw, value = raw; -128: do_not_use */
+    uint8_t cn0; /* C/N0 (10 dB-Hz more for signals other than GPS L1 P and L2 P) [dB-Hz]; raw, value = raw / 4; 255: do_not_use */
+    uint16_t lock_time; /* Time the carrier phase has been tracked without interruption (clipped to 65534 s) [s]; raw, value = raw; 65535: do_not_use */
+    uint8_t obs_info; /* Observation information (bitfield) */
+    bool pr_smoothed; /* Pseudorange smoothed by the carrier (obs_info bit 0) */
+    bool half_cycle_ambiguity; /* Half-cycle ambiguity not resolved (obs_info bit 2) */
+    uint8_t sig_idx_hi; /* Signal number (32 and above, when sig_idx_lo is 31) (obs_info bits 3-7) */
+    uint8_t n2; /* Type-2 sub-blocks after this one */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+    uint16_t type2_first; /* the index in type2 of its first entry (n2 of them) */
+} nmea_ubx_sbf_meas_epoch_type1_entry;
+
+/* Measurements of an epoch (MeasEpoch): SBF 4027 rev 1 (id 0x2FBB), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n1; /* Type-1 sub-blocks */
+    uint8_t sb1_length; /* Bytes of a Type-1 sub-block (its Type-2 sub-blocks not counted) [byte] */
+    uint8_t sb2_length; /* Bytes of a Type-2 sub-block [byte] */
+    uint8_t common_flags; /* Flags common to every measurement (bitfield) */
+    bool multipath_mitigation; /* Multipath mitigation on (common_flags bit 0) */
+    bool code_smoothing; /* Code smoothing on (common_flags bit 1) */
+    bool clock_steering; /* Receiver clock steered (common_flags bit 3) */
+    bool high_dynamics; /* High-dynamics mode (common_flags bit 5) */
+    bool e6b_used; /* Galileo E6B used (E6C otherwise) (common_flags bit 6) */
+    bool scrambling; /* Measurements scrambled (common_flags bit 7) */
+    uint8_t cum_clk_jumps; /* Cumulative clock jumps since start-up (modulo 256 ms) [s]; raw, value = raw / 1000 */
+    uint8_t reserved; /* Reserved (reserved, as sent) */
+    uint16_t type2_count; /* the entries of type2, every type1 entry's */
+    uint16_t type1_count; /* the entries of type1 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_meas_epoch_type2_entry type2[NMEA_UBX_SBF_MEAS_EPOCH_TYPE2_MAX]; /* The satellite's other signals (Type-2 sub-blocks): those of type1[k] from its type2_first on */
+    nmea_ubx_sbf_meas_epoch_type1_entry type1[NMEA_UBX_SBF_MEAS_EPOCH_TYPE1_MAX]; /* Satellites' first signals (Type-1 sub-blocks) */
+} nmea_ubx_sbf_meas_epoch;
 
 /* One entry of baselines (vectorinfocart sub-blocks) (vector_info). */
 typedef struct {
@@ -7681,11 +7851,14 @@ typedef enum {
     NMEA_UBX_MSG_CASIC_CFG_RATE, /* CASIC CFG-RATE, input, output */
     NMEA_UBX_MSG_CASIC_MON_VER_POLL, /* CASIC MON-VER, poll */
     NMEA_UBX_MSG_CASIC_MON_VER, /* CASIC MON-VER, output */
+    NMEA_UBX_MSG_SBF_MEAS_EXTRA, /* SBF 4000 rev 3, output */
     NMEA_UBX_MSG_SBF_PVT_DOP, /* SBF 4001 rev 0, output */
     NMEA_UBX_MSG_SBF_PVT_CARTESIAN, /* SBF 4006 rev 2, output */
     NMEA_UBX_MSG_SBF_PVT_GEODETIC, /* SBF 4007 rev 2, output */
     NMEA_UBX_MSG_SBF_SAT_VISIBILITY, /* SBF 4012 rev 0, output */
+    NMEA_UBX_MSG_SBF_CHANNEL_STATUS, /* SBF 4013 rev 0, output */
     NMEA_UBX_MSG_SBF_RECEIVER_STATUS, /* SBF 4014 rev 1, output */
+    NMEA_UBX_MSG_SBF_MEAS_EPOCH, /* SBF 4027 rev 1, output */
     NMEA_UBX_MSG_SBF_BASE_VECTOR_CART, /* SBF 4043 rev 0, output */
     NMEA_UBX_MSG_SBF_POS_COV_CARTESIAN, /* SBF 5905 rev 0, output */
     NMEA_UBX_MSG_SBF_POS_COV_GEODETIC, /* SBF 5906 rev 0, output */
@@ -8158,11 +8331,14 @@ typedef struct {
         nmea_ubx_casic_cfg_rate casic_cfg_rate;
         nmea_ubx_casic_mon_ver_poll casic_mon_ver_poll;
         nmea_ubx_casic_mon_ver casic_mon_ver;
+        nmea_ubx_sbf_meas_extra sbf_meas_extra;
         nmea_ubx_sbf_pvt_dop sbf_pvt_dop;
         nmea_ubx_sbf_pvt_cartesian sbf_pvt_cartesian;
         nmea_ubx_sbf_pvt_geodetic sbf_pvt_geodetic;
         nmea_ubx_sbf_sat_visibility sbf_sat_visibility;
+        nmea_ubx_sbf_channel_status sbf_channel_status;
         nmea_ubx_sbf_receiver_status sbf_receiver_status;
+        nmea_ubx_sbf_meas_epoch sbf_meas_epoch;
         nmea_ubx_sbf_base_vector_cart sbf_base_vector_cart;
         nmea_ubx_sbf_pos_cov_cartesian sbf_pos_cov_cartesian;
         nmea_ubx_sbf_pos_cov_geodetic sbf_pos_cov_geodetic;

@@ -482,6 +482,35 @@ static void other_protocols(void)
             failed++;
         }
     }
+    {   /* SBF sub-blocks of sub-blocks: a MeasEpoch of two Type-1 of 22 bytes, the first followed by two
+           Type-2 of 14 (one array of the message, from type2_first), both levels' 2 extra bytes kept; a
+           type2_first past the Type-2 entries not encoded, naming type2 */
+        static const uint8_t epoch[] = {0x24, 0x40, 0x85, 0xFE, 0xBB, 0x2F, 0x5C, 0x00, 0x68, 0xA2, 0xBF, 0x1C,
+                                      0x3F, 0x09, 0x02, 0x16, 0x0E, 0x01, 0x0C, 0x00, 0x01, 0x00, 0x11, 0x01,
+                                      0x15, 0xCD, 0x5B, 0x07, 0xE0, 0xB1, 0xFF, 0xFF, 0xF4, 0x01, 0xFD, 0xA0,
+                                      0x2A, 0x00, 0x01, 0x02, 0xAA, 0xBB, 0x02, 0x28, 0x96, 0xF7, 0xFF, 0x01,
+                                      0xE8, 0xFD, 0x2C, 0x01, 0x39, 0x30, 0xCC, 0xDD, 0x02, 0x28, 0x96, 0xF7,
+                                      0xFF, 0x01, 0xE8, 0xFD, 0x2C, 0x01, 0x39, 0x30, 0xEE, 0xFF, 0x02, 0x00,
+                                      0x05, 0x01, 0x15, 0xCD, 0x5B, 0x07, 0xE0, 0xB1, 0xFF, 0xFF, 0xF4, 0x01,
+                                      0xFD, 0xA0, 0x2A, 0x00, 0x01, 0x00, 0x11, 0x22};
+        const nmea_ubx_sbf_meas_epoch *e = &message.as.sbf_meas_epoch;
+        uint8_t out[sizeof epoch + 8];
+        if (!nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, epoch, sizeof epoch, &message, &err) ||
+            message.layout != NMEA_UBX_MSG_SBF_MEAS_EPOCH || e->type1_count != 2 || e->type2_count != 2 ||
+            e->type1[0].n2 != 2 || e->type1[0].type2_first != 0 || e->type1[1].n2 != 0 || e->type1[1].type2_first != 2 ||
+            e->type1[1].svid != 5 || e->type1[0].trailing.len != 2 || e->type2[1].trailing.len != 2 ||
+            e->type2[1].trailing.ptr[0] != 0xEE || e->type2[0].code_offset_msb != -1 || e->type2[0].doppler_offset_msb != -2 ||
+            nmea_ubx_encode(&message, out, sizeof out, &err) != sizeof epoch || memcmp(out, epoch, sizeof epoch)) {
+            printf("FAIL an SBF MeasEpoch of Type-1 and Type-2 sub-blocks: %s\n", err.text);
+            failed++;
+        }
+        message.as.sbf_meas_epoch.type1[0].type2_first = 1;
+        if (nmea_ubx_encode(&message, out, sizeof out, &err) || err.kind != NMEA_UBX_BAD_VALUE ||
+            strcmp(err.field, "type2") != 0) {
+            printf("FAIL an SBF MeasEpoch whose Type-1 names Type-2 entries past the array's: %s\n", err.text);
+            failed++;
+        }
+    }
 }
 
 int main(int argc, char **argv)

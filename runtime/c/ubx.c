@@ -307,17 +307,99 @@ static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, u
     return true;
 }
 
-/* Reads a layout's `items` into the struct at `m`, a group's entries field by field (a group
-   holds no group: the reader does not recurse). False with the error set. */
+/* Reads the entries of group `g` (the item `id`) into the array at `array` from its index `done`
+   on, and stores their number at `*read`: `owner` holds the member its count names (the message,
+   or the entry whose nested group it is), `m` the message (its stride, the nested group's array).
+   An entry's fields are read within its stride's bytes (a stride's last item, a view, takes those
+   after the fields), then the entries of its nested group, if any (the reader recurses that once:
+   a nested group holds fields only, rule B010). False with the error set. */
+static bool ubx_read_group(ubx_reader *r, const char *id, const nmea_ubx_group *g, uint8_t *m, const uint8_t *owner,
+                           uint8_t *array, size_t done, size_t *read)
+{
+    size_t left = r->len - r->pos, count, stride, len = r->len, k, f, nested = 0;
+    /* a stride (SBF's SBLength): each entry is that many bytes, at least its fields' */
+    stride = g->stride_member ? (size_t)ubx_get(m + g->stride_offset, g->stride_member, false) : g->entry_bytes;
+    count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
+            : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(owner + g->count_offset, g->count_member, false)
+                                                    : 1; /* counted below, the stride checked first */
+    if (count && stride < g->entry_bytes) { /* (the stride of no entry says nothing) */
+        snprintf(r->err->text, sizeof r->err->text, "%s is %lu, an entry of %s takes at least %u bytes", g->stride_id,
+                 (unsigned long)stride, id, (unsigned)g->entry_bytes);
+        return ubx_fail(r->err, NMEA_UBX_BAD_VALUE, r->address, g->stride_id);
+    }
+    if (g->count_kind == NMEA_UBX_COUNT_LEFT) {
+        count = left > g->after ? (left - g->after) / stride : 0;
+        if (count > g->limit)
+            count = g->limit;
+    }
+    if (count < g->min || count * stride > left) {
+        /* as Python says it: a group of the bytes left needs at least its least */
+        bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
+        snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %lu bits, %lu bits left", id,
+                 at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count), 8ul * (unsigned long)stride,
+                 8ul * (unsigned long)left);
+        return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, id);
+    }
+    if (count > g->max - done) {
+        snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)", id,
+                 (unsigned long)(done + count), (unsigned)g->max);
+        return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, id);
+    }
+    memset(array + done * g->entry_size, 0, count * g->entry_size);
+    for (k = 0; k < count; k++) {
+        uint64_t entry_word = 0;
+        bool ignored = false;
+        uint8_t *entry = array + (done + k) * g->entry_size;
+        size_t end = r->pos + stride;
+        if (stride > len - r->pos) { /* (after a nested group's entries: the next entry cut) */
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %lu bits, %lu bits left", id,
+                     (unsigned long)(count - k), 8ul * (unsigned long)stride, 8ul * (unsigned long)(len - r->pos));
+            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, id);
+        }
+        r->len = end; /* the entry's bytes */
+        for (f = 0; f < g->n_items; f++) {
+            if (UBX_IS_PART(&g->items[f]))
+                ubx_read_part(&g->items[f], entry, entry_word);
+            else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored)) {
+                r->len = len;
+                return false;
+            }
+        }
+        r->len = len;
+        r->pos = end;
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) { /* its own entries, after its bytes, in the message's array of them */
+            size_t got = 0;
+            uint16_t first = (uint16_t)nested;
+            memcpy(entry + g->nested_first, &first, sizeof first);
+            if (!ubx_read_group(r, g->nested_id, g->nested, m, entry, m + g->nested_offset, nested, &got))
+                return false;
+            nested += got;
+        }
+#endif
+    }
+#ifdef NMEA_UBX_NESTED
+    if (g->nested) {
+        uint16_t stored = (uint16_t)nested;
+        memcpy(m + g->nested->n_offset, &stored, sizeof stored);
+    }
+#endif
+    (void)nested;
+    *read = count;
+    return true;
+}
+
+/* Reads a layout's `items` into the struct at `m`, a group's entries field by field. False with
+   the error set. */
 static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, uint8_t *m)
 {
     uint64_t word = 0;
     bool done = false;
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n && !done; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-        size_t left = r->len - r->pos, count, stride, len = r->len;
+        size_t count = 0;
         uint16_t stored;
         if (UBX_IS_PART(it)) {
             ubx_read_part(it, m, word);
@@ -328,52 +410,8 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                 return false;
             continue;
         }
-        /* a stride (SBF's SBLength): each entry is that many bytes, at least its fields' */
-        stride = g->stride_member ? (size_t)ubx_get(m + g->stride_offset, g->stride_member, false) : g->entry_bytes;
-        count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
-                : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
-                                                        : 1; /* counted below, the stride checked first */
-        if (count && stride < g->entry_bytes) { /* (the stride of no entry says nothing) */
-            snprintf(r->err->text, sizeof r->err->text, "%s is %lu, an entry of %s takes at least %u bytes",
-                     g->stride_id, (unsigned long)stride, it->id, (unsigned)g->entry_bytes);
-            return ubx_fail(r->err, NMEA_UBX_BAD_VALUE, r->address, g->stride_id);
-        }
-        if (g->count_kind == NMEA_UBX_COUNT_LEFT) {
-            count = left > g->after ? (left - g->after) / stride : 0;
-            if (count > g->limit)
-                count = g->limit;
-        }
-        if (count < g->min || count * stride > left) {
-            /* as Python says it: a group of the bytes left needs at least its least */
-            bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
-            snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %lu bits, %lu bits left", it->id,
-                     at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count),
-                     8ul * (unsigned long)stride, 8ul * (unsigned long)left);
-            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
-        }
-        if (count > g->max) {
-            snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)",
-                     it->id, (unsigned long)count, (unsigned)g->max);
-            return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
-        }
-        memset(m + it->offset, 0, count * g->entry_size);
-        for (k = 0; k < count; k++) {
-            uint64_t entry_word = 0;
-            bool ignored = false;
-            uint8_t *entry = m + it->offset + k * g->entry_size;
-            size_t end = r->pos + stride;
-            r->len = end; /* the entry's bytes: a stride's last item, a view, takes those after its fields */
-            for (f = 0; f < g->n_items; f++) {
-                if (UBX_IS_PART(&g->items[f]))
-                    ubx_read_part(&g->items[f], entry, entry_word);
-                else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored)) {
-                    r->len = len;
-                    return false;
-                }
-            }
-            r->len = len;
-            r->pos = end;
-        }
+        if (!ubx_read_group(r, it->id, g, m, m, m + it->offset, 0, &count))
+            return false;
         stored = (uint16_t)count;
         memcpy(m + g->n_offset, &stored, sizeof stored);
     }
@@ -477,11 +515,58 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
     }
 }
 
+/* Writes the entries `first` to `first + count - 1` of group `g` (the item `id`) of the array at
+   `array` (`m`: the message): each entry's fields, of as many bytes as its stride says, then the
+   entries of its nested group, if any (those its index and count member say, within the message's
+   array of them). */
+static bool ubx_write_group(ubx_writer *w, const char *id, const nmea_ubx_group *g, const uint8_t *m,
+                            const uint8_t *array, size_t first, size_t count)
+{
+    size_t k, f;
+    if (first + count > g->max) {
+        snprintf(w->err->text, sizeof w->err->text, "%s has %lu entries, its array holds %u", id,
+                 (unsigned long)(first + count), (unsigned)g->max);
+        return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, id);
+    }
+    for (k = first; k < first + count; k++) {
+        const uint8_t *entry = array + k * g->entry_size;
+        size_t start = w->len;
+        for (f = 0; f < g->n_items; f++)
+            if (!ubx_write_field(w, g->items, g->n_items, f, entry))
+                return false;
+        if (g->stride_member) { /* an entry of as many bytes as its stride says */
+            uint64_t stride = ubx_get(m + g->stride_offset, g->stride_member, false);
+            if (w->len - start != stride) {
+                snprintf(w->err->text, sizeof w->err->text, "%s takes the bytes of each entry of %s (%lu), not %lu",
+                         g->stride_id, id, (unsigned long)(w->len - start), (unsigned long)stride);
+                return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->stride_id);
+            }
+        }
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) { /* its own entries: from its index on, as many as its count member says */
+            const nmea_ubx_group *in = g->nested;
+            uint16_t from, total;
+            size_t n = (size_t)ubx_get(entry + in->count_offset, in->count_member, false);
+            memcpy(&from, entry + g->nested_first, sizeof from);
+            memcpy(&total, m + in->n_offset, sizeof total);
+            if ((size_t)from + n > total || total > in->max) {
+                snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, an entry of %s names %lu from %u",
+                         g->nested_id, (unsigned)total, id, (unsigned long)n, (unsigned)from);
+                return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->nested_id);
+            }
+            if (!ubx_write_group(w, g->nested_id, in, m, m + g->nested_offset, from, n))
+                return false;
+        }
+#endif
+    }
+    return true;
+}
+
 /* Writes a layout's `items` of the struct at `m`, a group's entries field by field; stops at an
    optional field whose flag is false. */
 static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n, const uint8_t *m)
 {
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
@@ -494,25 +579,8 @@ static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n,
             continue;
         }
         memcpy(&count, m + g->n_offset, sizeof count);
-        if (count > g->max) {
-            snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, its array holds %u", it->id, (unsigned)count,
-                     (unsigned)g->max);
-            return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
-        }
-        for (k = 0; k < count; k++) {
-            size_t start = w->len;
-            for (f = 0; f < g->n_items; f++)
-                if (!ubx_write_field(w, g->items, g->n_items, f, m + it->offset + k * g->entry_size))
-                    return false;
-            if (g->stride_member) { /* an entry of as many bytes as its stride says */
-                uint64_t stride = ubx_get(m + g->stride_offset, g->stride_member, false);
-                if (w->len - start != stride) {
-                    snprintf(w->err->text, sizeof w->err->text, "%s takes the bytes of each entry of %s (%lu), not %lu",
-                             g->stride_id, it->id, (unsigned long)(w->len - start), (unsigned long)stride);
-                    return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->stride_id);
-                }
-            }
-        }
+        if (!ubx_write_group(w, it->id, g, m, m + it->offset, 0, count))
+            return false;
     }
     return true;
 }
@@ -729,11 +797,43 @@ static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8
     }
 }
 
+/* The JSON member `id` of the entries `first` to `first + count - 1` of group `g` of the array at
+   `array` (`m`: the message): an array of objects, an entry's fields then its nested group's
+   entries (those its index and count member say; a count past the array's stops at its end). */
+static void ubx_json_group(ubx_json_out *j, const char *id, const nmea_ubx_group *g, const uint8_t *m,
+                           const uint8_t *array, size_t first, size_t count)
+{
+    size_t k, f;
+    (void)m; /* (a nested group's array) */
+    ubx_json_key(j, id);
+    ubx_json_puts(j, "[");
+    for (k = first; k < first + count && k < g->max; k++) {
+        const uint8_t *entry = array + k * g->entry_size;
+        ubx_json_puts(j, k > first ? ",{" : "{");
+        j->empty = true;
+        for (f = 0; f < g->n_items; f++)
+            ubx_json_field(j, &g->items[f], entry);
+#ifdef NMEA_UBX_NESTED
+        if (g->nested) {
+            uint16_t from, total;
+            size_t n = (size_t)ubx_get(entry + g->nested->count_offset, g->nested->count_member, false);
+            memcpy(&from, entry + g->nested_first, sizeof from);
+            memcpy(&total, m + g->nested->n_offset, sizeof total);
+            ubx_json_group(j, g->nested_id, g->nested, m, m + g->nested_offset, from,
+                           from >= total ? 0 : n < (size_t)(total - from) ? n : (size_t)(total - from));
+        }
+#endif
+        ubx_json_puts(j, "}");
+    }
+    ubx_json_puts(j, "]");
+    j->empty = false;
+}
+
 /* The JSON members of a layout's `items` of the struct at `m` (those of
    generated/vectors/ubx.jsonl), a group's entries field by field. */
 static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n, const uint8_t *m)
 {
-    size_t i, k, f;
+    size_t i;
     for (i = 0; i < n; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
@@ -745,17 +845,7 @@ static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n
             continue;
         }
         memcpy(&count, m + g->n_offset, sizeof count);
-        ubx_json_key(j, it->id);
-        ubx_json_puts(j, "[");
-        for (k = 0; k < count; k++) {
-            ubx_json_puts(j, k ? ",{" : "{");
-            j->empty = true;
-            for (f = 0; f < g->n_items; f++)
-                ubx_json_field(j, &g->items[f], m + it->offset + k * g->entry_size);
-            ubx_json_puts(j, "}");
-        }
-        ubx_json_puts(j, "]");
-        j->empty = false;
+        ubx_json_group(j, it->id, g, m, m + it->offset, 0, count);
     }
 }
 

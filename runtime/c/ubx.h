@@ -195,6 +195,13 @@ typedef struct nmea_ubx_group {
                                those after its fields): bytes of its member; 0: entries of entry_bytes */
     uint16_t stride_offset; /* of the stride's member */
     const char *stride_id;  /* the stride's field (errors name it) */
+    const struct nmea_ubx_group *nested; /* the group each entry ends with (SBF's Type-2 sub-blocks after each
+                               Type-1), or NULL: counted by a member of the entry (its count_offset the entry's),
+                               its entries after the entry's stride bytes; every entry's in one array of the
+                               message, an entry's from its index at nested_first */
+    const char *nested_id;  /* the nested group's field (errors and JSON name it) */
+    uint16_t nested_offset; /* of the nested group's array in the message */
+    uint16_t nested_first;  /* of an entry's uint16_t index of its first entry in that array */
 } nmea_ubx_group;
 
 typedef struct {

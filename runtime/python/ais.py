@@ -390,8 +390,9 @@ class Group:
 
     id: str
     entry: type
-    fields: tuple[Field | Choice, ...]
-    """An entry's fields, and choices by a field of the entry before them (every case as wide)."""
+    fields: tuple[Field | Choice | Group, ...]
+    """An entry's fields, and choices by a field of the entry before them (every case as wide), and
+    last, maybe, a group of the entry's own."""
     min: int
     max: int
     after: int = 0
@@ -400,11 +401,20 @@ class Group:
     """The entries' first fields, then their second fields, and so on (RTCM 3 MSM)."""
     stride: str | None = None
     """The member that holds each entry's bytes (SBF's SBLength): an entry's fields are read from
-    its start, its last field (`trailing`, the bytes left) keeps the bytes after them as sent."""
+    its start, its last field (`trailing`, the bytes left) keeps the bytes after them as sent; a
+    group may end the entry (SBF's Type-2 sub-blocks after each Type-1), counted by a member of
+    the entry, its stride a member of the message, its entries after the stride's bytes."""
 
     @property
     def entry_width(self) -> int:
-        return sum((f.width or 0) if isinstance(f, Field) else _case_width(f.cases[0]) for f in self.fields)
+        return sum((f.width or 0) if isinstance(f, Field) else _case_width(f.cases[0]) for f in self.fields
+                   if not isinstance(f, Group))
+
+    @property
+    def nested(self) -> Group | None:
+        """The group each entry ends with, if any."""
+        last = self.fields[-1] if self.fields else None
+        return last if isinstance(last, Group) else None
 
 
 @dataclass(frozen=True, slots=True)
@@ -529,11 +539,14 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
     return True
 
 
-def _read_strided(item: Group, reader: BitReader | ByteReader, values: dict[str, Any]) -> None:
+def _read_strided(item: Group, reader: BitReader | ByteReader, values: dict[str, Any],
+                  block: dict[str, Any] | None = None) -> None:
     """A group whose entries are as many bytes as the member `item.stride` says (at least their
-    fields'): each entry read from its start, within its bytes (its last field takes the rest)."""
+    fields'): each entry read from its start, within its bytes (its last field takes the rest),
+    then the entries of the group it ends with, if any. `values` holds the members its count
+    names, `block` (None: `values`) those of the message, which its stride names."""
     assert item.stride is not None
-    stride = 8 * values[item.stride]
+    stride = 8 * (values if block is None else block)[item.stride]
     count = 1 if item.count is None else item.count if isinstance(item.count, int) else \
         values[item.count] if isinstance(item.count, str) else count_of(item.count, values)
     if count and stride < item.entry_width:   # (the stride of no entry says nothing)
@@ -546,15 +559,22 @@ def _read_strided(item: Group, reader: BitReader | ByteReader, values: dict[str,
         raise NmeaError("short_payload", f"{item.id} needs {needs} entries of {stride} bits, "
                         f"{reader.remaining} bits left", reader.where, name=item.id)
     length = reader.length
+    nested = item.nested
+    fields = item.fields[:-1] if nested is not None else item.fields
     entries = []
-    try:
-        for _ in range(count):
-            reader.length = reader.pos + stride   # the entry's bytes: its last field reads to their end
-            entry: dict[str, Any] = {}
-            read_items(item.fields, reader, entry)
-            entries.append(item.entry(**entry))
-    finally:
-        reader.length = length
+    for k in range(count):
+        if reader.pos + stride > length:   # (after a nested group's entries: the next entry cut)
+            raise NmeaError("short_payload", f"{item.id} needs {count - k} entries of {stride} bits, "
+                            f"{length - reader.pos} bits left", reader.where, name=item.id)
+        reader.length = reader.pos + stride   # the entry's bytes: its last field reads to their end
+        entry: dict[str, Any] = {}
+        try:
+            read_items(fields, reader, entry)
+        finally:
+            reader.length = length
+        if nested is not None:   # its own entries, after its bytes
+            _read_strided(nested, reader, entry, values if block is None else block)
+        entries.append(item.entry(**entry))
     values[item.id] = entries
 
 
@@ -1175,8 +1195,11 @@ def _written(writer: BitWriter | ByteWriter) -> int:
     return writer.length // 8 if isinstance(writer, BitWriter) else len(writer.payload)
 
 
-def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
-    """Write the values of `items` from `message`'s members; False at an optional field left None."""
+def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str,
+                block: Any = None) -> bool:
+    """Write the values of `items` from `message`'s members; False at an optional field left None.
+    `block` (None: `message`) holds the members a group's stride names (a nested group's: the
+    message's, not its entry's)."""
     for item in items:
         if isinstance(item, Field):
             value = getattr(message, item.id)
@@ -1208,13 +1231,21 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                         else:
                             writer.put(*f.to_raw(getattr(entry, f.id), where))
                 continue
-            stride = getattr(message, item.stride) if item.stride is not None else None
+            outer = message if block is None else block
+            stride = getattr(outer, item.stride) if item.stride is not None else None
+            nested = item.nested
+            fields = item.fields[:-1] if nested is not None else item.fields
             for entry in entries:
                 start = _written(writer)
-                write_items(item.fields, entry, writer, where)
+                write_items(fields, entry, writer, where)
                 if item.stride is not None and _written(writer) - start != stride:
                     raise _bad_value(where, item.stride, stride, f"the bytes of each entry of {item.id} "
                                      f"({_written(writer) - start})")
+                if nested is not None:   # the entry's own group, after its bytes
+                    if len(getattr(entry, nested.id)) != count_of(nested.count or 0, entry):
+                        raise _bad_value(where, str(nested.count), count_of(nested.count or 0, entry),
+                                         f"the number of entries of {nested.id} ({len(getattr(entry, nested.id))})")
+                    write_items((nested,), entry, writer, where, outer)
         else:  # the selector: a field of the entry before the choice, or of the message
             selector = next((f for f in items if isinstance(f, Field) and f.id == item.by), None) or \
                 message.field(item.by)

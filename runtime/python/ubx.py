@@ -540,11 +540,17 @@ class Message:
         if self.SELECT is not None and getattr(self, self.SELECT[0]) is None:
             implied[self.SELECT[0]] = self.SELECT[2]
         for group in self.LAYOUT:
-            if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
-                implied[group.count] = len(getattr(self, group.id))
-            if isinstance(group, Group) and group.stride is not None and getattr(self, group.stride) is None:
-                entries = getattr(self, group.id)   # a stride left None: the first entry's bytes
+            if not isinstance(group, Group):
+                continue
+            entries = getattr(self, group.id)
+            if isinstance(group.count, str) and getattr(self, group.count) is None:
+                implied[group.count] = len(entries)
+            if group.stride is not None and getattr(self, group.stride) is None:   # the first entry's bytes
                 implied[group.stride] = group.entry_width // 8 + (len(entries[0].trailing or b"") if entries else 0)
+            nested = group.nested
+            if nested is not None and nested.stride is not None and getattr(self, nested.stride) is None:
+                inner = [e for entry in entries for e in getattr(entry, nested.id)]
+                implied[nested.stride] = nested.entry_width // 8 + (len(inner[0].trailing or b"") if inner else 0)
         writer = ByteWriter("big" if self.BIG else "little")
         message = replace(self, **implied) if implied else self
         write_items(self.LAYOUT, message, writer, f"{self.PROTOCOL} {self.ADDRESS}")

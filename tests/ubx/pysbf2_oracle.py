@@ -30,7 +30,8 @@ LOGS = sorted(DATA.glob("*.sbf")) + sorted(DATA.glob("*.log"))
 # The blocks the spec types, by pysbf2's name.
 TYPED = {"PVTGeodetic": 4007, "PVTCartesian": 4006, "PosCovCartesian": 5905, "PosCovGeodetic": 5906,
          "VelCovCartesian": 5907, "VelCovGeodetic": 5908, "DOP": 4001, "ReceiverTime": 5914, "SatVisibility": 4012,
-         "ReceiverStatus": 4014, "BaseVectorCart": 4043, "EndOfPVT": 5921, "xPPSOffset": 5911}
+         "ReceiverStatus": 4014, "BaseVectorCart": 4043, "EndOfPVT": 5921, "xPPSOffset": 5911, "MeasExtra": 4000, "MeasEpoch": 4027,
+         "ChannelStatus": 4013}
 # pysbf2's names that snake case does not make ours; its reserved bits, which we keep unnamed.
 NAMES = {"WNc": "wnc", "TOW": "tow", "2D": "two_d", "Type": "mode_type", "NrSV": "nr_sv", "Corr_DO229Active":
          "corr_do229_active", "RAIMIntegrity": "raim_integrity", "GalHPCAFail": "gal_hpca_fail",
@@ -42,19 +43,41 @@ NAMES = {"WNc": "wnc", "TOW": "tow", "2D": "two_d", "Type": "mode_type", "NrSV":
          "Vx": "vx", "Vy": "vy", "Vz": "vz", "X": "x", "Y": "y", "Z": "z", "COG": "cog",
          "Corr_RTKType": "corr_rtk_type", "SBLength": "sb_length", "CPULoad": "cpu_load", "SISError": "sis_error",
          "CPUOverloadError": "cpu_overload_error", "MissEventError": "missed_event_error", "WnSer": "wn_set",
-         "SVID": "svid"}
+         "SVID": "svid", "MPCorrection": "mp_correction", "CarMPCorr": "car_mp_corr", "CN0HighRes": "cn0_high_res",
+         "E6BUsed": "e6b_used", "PRSmoothed": "pr_smoothed", "PVTInfo": "pvt_info", "PVTStatus": "pvt_status"}
 RESERVED = re.compile(r"^Reserved\d*$")
 # pysbf2's fields we leave out, and why.
 LEFT_OUT = {"SigAuth": "a bit of AlertFlag that revision 3 adds (the logs' blocks are revision 2: reserved there)",
             "NavMsgAuth": "a bit of AlertFlag that revision 3 adds (the logs' blocks are revision 2: reserved there)",
             "SVIDFull": "pysbf2's own addition to each SatInfo sub-block, no field of Septentrio's layout"}
-# A sub-block's fields: pysbf2 names the k-th entry's <Name>_<k> (two digits, from 01); ours are the
-# entries of the layout's one group, <group>.<field> here.
-ENTRY = re.compile(r"^(.+)_(\d{2})$")
+# A sub-block's fields: pysbf2 names the k-th entry's <Name>_<k> (two digits or more, from 01), and the j-th
+# sub-block nested in it <Name>_<k>_<j>; ours are the entries of the layout's one group,
+# <group>.<field> here (<group>.<nested group>.<field>).
+ENTRY = re.compile(r"^(.+?)_(\d{2,})(?:_(\d{2,}))?$")
 # Fields whose unit pysbf2 converts (block, our field): the factor from ours to its, the relative
 # tolerance of the comparison and why. Each such value is counted as agreeing once converted.
-CONVERTED = {("xPPSOffset", "offset"): (1e-9, 1e-3, "pysbf2 gives the offset in seconds, rounded to 4 significant "
-                                                    "digits (5.406e-09); ours is the r4 as sent, in ns (5.40565...)")}
+CONVERTED: dict[tuple[str, str], tuple[Any, float, str]] = {("xPPSOffset", "offset"): (1e-9, 1e-3, "pysbf2 gives the offset in seconds, rounded to 4 significant "
+                                                    "digits (5.406e-09); ours is the r4 as sent, in ns (5.40565...)"),
+             ("MeasExtra", "meas_extra_channel.car_mp_corr"): (1000, 1e-9, "pysbf2 gives it in millicycles; ours "
+                                                               "in cycles (the guide's 1/512 cycle)"),
+             ("MeasExtra", "meas_extra_channel.cn0_high_res"): (1 / 32, 1e-9, "pysbf2 gives it in dB-Hz; ours is "
+                                                                "the 3-bit part as sent (0.03125 dB-Hz each)"),
+             ("MeasEpoch", "type1.code_msb"): (4294967.296, 1e-9, "pysbf2 gives it in metres (4294967.296 m each); "
+                                               "ours is the 4-bit part as sent (a scale above 1 is left raw)"),
+             ("MeasEpoch", "type1.carrier_msb"): (65.536, 1e-9, "pysbf2 gives it in cycles (65.536 each); ours is the "
+                                                  "i1 as sent (a scale above 1 is left raw)"),
+             ("MeasEpoch", "type1.type2.code_offset_msb"): (
+                 lambda v: v % 8 * 65.536, 1e-9, "pysbf2 reads the 3 bits unsigned and in metres (7: 458.752 m); ours "
+                 "are the guide's two's complement as sent (7: -1, 65.536 m each)"),
+             ("MeasEpoch", "type1.type2.doppler_offset_msb"): (
+                 lambda v: v % 32 * 6.5536, 1e-9, "pysbf2 reads the 5 bits unsigned and in Hz (31: 203.1616 Hz); ours "
+                 "are the guide's two's complement as sent (31: -1, 6.5536 Hz each)")}
+
+
+def _convert(key: tuple[str, str], value: Any) -> Any:
+    """Our value in pysbf2's unit (CONVERTED)."""
+    factor = CONVERTED[key][0]
+    return factor(value) if callable(factor) else value * factor
 
 
 def snake(name: str) -> str:
@@ -128,7 +151,7 @@ def _special_agrees(f: Any, value: Any, theirs: Any) -> bool:
 def outcomes() -> list[Outcome]:
     sys.path.insert(0, str(ROOT / "generated" / "python"))
     from nmeaspec import sbf_messages
-    from nmeaspec.ais import Group, Special
+    from nmeaspec.ais import Group, Special, flat_fields
 
     recorded = [json.loads(line) for line in RECORD.read_text().splitlines()[1:]]
     blocks = {log.name: sbf_blocks(log.read_bytes()) for log in LOGS}
@@ -145,14 +168,20 @@ def outcomes() -> list[Outcome]:
             if RESERVED.match(name):
                 continue
             entry = ENTRY.match(name)
-            if entry and groups:   # the k-th sub-block's field
-                base, index = snake(entry.group(1)), int(entry.group(2)) - 1
+            if entry and groups:   # the k-th sub-block's field (or its j-th nested sub-block's)
+                if RESERVED.match(entry.group(1)):
+                    continue
                 group = groups[0]
-                if base not in {f.id for f in group.fields}:
+                owner, path = getattr(message, group.id)[int(entry.group(2)) - 1], group.id
+                if entry.group(3):
+                    group = next(g for g in group.fields if isinstance(g, Group))
+                    owner, path = getattr(owner, group.id)[int(entry.group(3)) - 1], f"{path}.{group.id}"
+                base = snake(entry.group(1))
+                entry_fields = {f.id: f for f in flat_fields(group.fields)}
+                if base not in entry_fields:
                     o.missing.add(entry.group(1))
                     continue
-                key, owner, spec = f"{group.id}.{base}", getattr(message, group.id)[index], \
-                    next(f for f in group.fields if f.id == base)
+                key, spec = f"{path}.{base}", entry_fields[base]
             else:
                 key = snake(name)
                 if key not in ours:
@@ -161,8 +190,10 @@ def outcomes() -> list[Outcome]:
                 owner, spec, base = message, message.FIELDS.get(key), key
             o.fields[key] += 1
             value = getattr(owner, base)
+            converted = CONVERTED.get((r["block"], key))
             if isinstance(value, Special):   # a do-not-use value, by its id: pysbf2's number is its raw value
-                if _special_agrees(spec, value, theirs):
+                if _special_agrees(spec, value, theirs) or converted is not None and math.isclose(
+                        _convert((r["block"], key), value.raw), theirs, rel_tol=converted[1]):
                     o.special[key] += 1
                 elif len(o.differ) < 5:
                     o.differ.append(f"{r['log']} block {r['index']} {key}: ours {value.id} (raw {value.raw}), "
@@ -170,8 +201,7 @@ def outcomes() -> list[Outcome]:
                 continue
             if isinstance(value, Enum):   # an enum's code
                 value = int(value.value)
-            converted = CONVERTED.get((r["block"], key))
-            if converted is not None and math.isclose(value * converted[0], theirs, rel_tol=converted[1]):
+            if converted is not None and math.isclose(_convert((r["block"], key), value), theirs, rel_tol=converted[1]):
                 o.agree[key] += 1
                 o.converted.add(key)
             elif _equal(value, theirs):

@@ -24,6 +24,7 @@ from nmeaspec.casic_messages.nav_pv import NavPv  # isort: skip
 from nmeaspec.runtime import NmeaError  # isort: skip
 from nmeaspec.sbf_messages import BY_ID as SBF  # isort: skip
 from nmeaspec.sbf_messages.pvt_geodetic import PvtGeodetic  # isort: skip
+from nmeaspec.sbf_messages.meas_epoch import MeasEpoch  # isort: skip
 from nmeaspec.sbf_messages.sat_visibility import SatVisibility  # isort: skip
 from nmeaspec.sirf_messages import BY_ID as SIRF  # isort: skip
 from nmeaspec.sirf_messages.geodetic_nav import GeodeticNav  # isort: skip
@@ -177,7 +178,8 @@ def test_gpsd_agrees() -> None:
 # logs' frame split, tests/ubx/test_stream_frames.py); the other blocks stay binary.Unknown.
 SBF_EXPECTED = {"4006 rev 2": 58, "4007 rev 2": 2, "5905 rev 0": 58, "5906 rev 0": 1, "5907 rev 0": 58,
                 "5908 rev 0": 1, "4001 rev 0": 1, "5914 rev 0": 1, "4012 rev 0": 3, "4014 rev 1": 3,
-                "4043 rev 0": 58, "5911 rev 0": 1, "5921 rev 0": 1}
+                "4043 rev 0": 58, "5911 rev 0": 1, "5921 rev 0": 1, "4000 rev 3": 1,
+                "4027 rev 1": 1, "4013 rev 0": 3}
 
 
 def sbf_frames() -> list[bytes]:
@@ -268,6 +270,35 @@ def test_sbf_sub_blocks_of_their_sblength() -> None:
     assert (err.value.kind, err.value.name) == ("bad_value", "sb_length")
     assert str(err.value).endswith("SBF 4012 rev 0: sb_length is 4, an entry of sat_info takes at least 8 bytes"), \
         str(err.value)
+
+
+def test_sbf_sub_blocks_of_sub_blocks() -> None:
+    """MeasEpoch: Type-1 sub-blocks of SB1Length, each followed by its N2 Type-2 of SB2Length (rule
+    B010), read with both levels' trailing bytes and encoded back byte for byte; Type-2 entries of
+    another number than N2 are not encoded; an SB2Length shorter than the fields is refused naming
+    it (the frames of generated/vectors/binary.jsonl show the rest to the three languages)."""
+    epoch = next(stream.BinaryFrame("sbf", d).message() for d in sbf_frames()
+                 if int.from_bytes(d[4:6], "little") & 0x1FFF == 4027)
+    assert isinstance(epoch, MeasEpoch) and (epoch.n1, epoch.sb1_length, epoch.sb2_length) == (44, 20, 12)
+    assert len(epoch.type1) == 44 and sum(len(t.type2) for t in epoch.type1) == 56
+    first = epoch.type1[0]
+    assert (first.svid, first.n2, len(first.type2), first.type2[0].code_offset_msb) == (17, 2, 2, -1)
+    longer = replace(epoch, n1=None, sb1_length=None, sb2_length=None,
+                     type1=[replace(t, trailing=b"\x01\x02", type2=[replace(e, trailing=b"\x03\x04") for e in t.type2])
+                            for t in epoch.type1[:3]])
+    again = MeasEpoch.from_payload(longer.payload())
+    assert (again.n1, again.sb1_length, again.sb2_length) == (3, 22, 14) and again.type1 == longer.type1
+    assert again.payload() == longer.payload()
+    longer.type1[0].n2 = 1
+    with pytest.raises(NmeaError) as err:
+        longer.payload()
+    assert (err.value.kind, err.value.name) == ("bad_value", "n2")
+    short = bytearray(epoch.payload())
+    short[8] = 8   # SB2Length 8: a Type-2's fields take 12
+    with pytest.raises(NmeaError) as err:
+        MeasEpoch.from_payload(bytes(short))
+    assert (err.value.kind, err.value.name) == ("bad_value", "sb2_length")
+    assert str(err.value).endswith("sb2_length is 8, an entry of type2 takes at least 12 bytes"), str(err.value)
 
 
 def test_pysbf2_agrees() -> None:

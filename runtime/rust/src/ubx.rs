@@ -456,6 +456,53 @@ impl<'a> ByteReader<'a> {
         let bytes = self.bytes(count * stride, field)?;
         Ok(Group { bytes, stride, entry: PhantomData })
     }
+
+    /// A group's `count` entries of `stride` bytes (the field `stride_field`), each followed by the
+    /// entries of its own group (`nested`, counted by a field of the entry, `inner` bytes each: the
+    /// field `inner_field`): SBF's Type-1 sub-blocks and their Type-2. Checked entry by entry, as
+    /// Python reads them: a stride shorter than the fields, a count that runs past the payload.
+    #[allow(clippy::too_many_arguments)]
+    pub fn group_nesting<E: Entry<'a>>(
+        &mut self,
+        count: usize,
+        stride: usize,
+        inner: usize,
+        field: &'static str,
+        stride_field: &'static str,
+        nested: &'static str,
+        inner_field: &'static str,
+    ) -> Result<Nesting<'a, E>, UbxError> {
+        if count != 0 && stride < E::WIDTH {
+            let detail = Detail::Stride { stride, group: field, width: E::WIDTH };
+            return Err(self.error(UbxErrorKind::BadValue, stride_field, detail));
+        }
+        let left = self.remaining();
+        if count * stride > left {
+            let detail = Detail::FewEntries { count, at_least: false, width: stride, left };
+            return Err(self.error(UbxErrorKind::ShortPayload, field, detail));
+        }
+        let mut at = 0;
+        for k in 0..count {
+            let rest = left - at;
+            if stride > rest {
+                let detail = Detail::FewEntries { count: count - k, at_least: false, width: stride, left: rest };
+                return Err(self.error(UbxErrorKind::ShortPayload, field, detail));
+            }
+            let n = E::nested_count(&self.payload[self.pos + at..self.pos + at + stride]);
+            at += stride;
+            if n != 0 && inner < E::NESTED_WIDTH {
+                let detail = Detail::Stride { stride: inner, group: nested, width: E::NESTED_WIDTH };
+                return Err(self.error(UbxErrorKind::BadValue, inner_field, detail));
+            }
+            if n * inner > left - at {
+                let detail = Detail::FewEntries { count: n, at_least: false, width: inner, left: left - at };
+                return Err(self.error(UbxErrorKind::ShortPayload, nested, detail));
+            }
+            at += n * inner;
+        }
+        let bytes = self.bytes(at, field)?;
+        Ok(Nesting { bytes, count, stride, inner, entry: PhantomData })
+    }
 }
 
 /// A payload being written into a caller's buffer, little endian.
@@ -707,6 +754,17 @@ pub trait Entry<'a>: Sized {
     fn write(&self, w: &mut ByteWriter<'_>) -> Result<(), UbxError>;
     /// The members of its decoded JSON, in order.
     fn json_members<W: Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result;
+    /// An entry that ends with a group of its own (SBF's Type-2 sub-blocks after a Type-1, a
+    /// [`Nesting`]'s): that group's number of entries, from the entry's fields' bytes (`head`, at
+    /// least `WIDTH`); 0 for the others.
+    fn nested_count(_head: &[u8]) -> usize {
+        0
+    }
+    /// The least bytes of an entry of the group it ends with (0: it ends with none).
+    const NESTED_WIDTH: usize = 0;
+    /// Sets the group it ends with to the entries of `bytes`, `stride` bytes each (none for
+    /// an entry that ends with no group).
+    fn set_nested(&mut self, _bytes: &'a [u8], _stride: usize) {}
 }
 
 /// The entries of a repeated group, as sent: a view of their bytes, each entry read when asked
@@ -837,6 +895,163 @@ impl<E> PartialEq for Group<'_, E> {
 }
 
 impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Group<'a, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+/// The entries of a group whose entries each end with a group of their own (SBF's Type-1
+/// sub-blocks of SB1Length, each followed by its N2 Type-2 sub-blocks of SB2Length), as sent: a view
+/// of their bytes, each entry (and its own group, a [`Group`] of `inner`-byte entries) read when
+/// asked, nothing allocated.
+pub struct Nesting<'a, E> {
+    bytes: &'a [u8],
+    count: usize,
+    stride: usize,
+    inner: usize,
+    entry: PhantomData<E>,
+}
+
+impl<'a, E: Entry<'a>> Nesting<'a, E> {
+    /// The `count` entries of `bytes`: each `stride` bytes (at least its fields'), then its own
+    /// group's entries of `inner` bytes each (None when `bytes` is not exactly that).
+    pub fn new(bytes: &'a [u8], count: usize, stride: usize, inner: usize) -> Option<Self> {
+        let mut at = 0;
+        for _ in 0..count {
+            let head = bytes.get(at..at + stride).filter(|_| stride >= E::WIDTH.max(1))?;
+            let n = E::nested_count(head);
+            if n != 0 && inner < E::NESTED_WIDTH.max(1) {
+                return None;
+            }
+            at += stride + n * inner;
+        }
+        (at == bytes.len()).then_some(Nesting { bytes, count, stride, inner, entry: PhantomData })
+    }
+
+    /// The number of entries.
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The bytes of every entry and of their groups' entries, as sent.
+    pub fn bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+
+    /// The bytes of an entry (its fields, then its trailing bytes), of an entry of an entry's group.
+    pub fn strides(&self) -> (usize, usize) {
+        (self.stride, self.inner)
+    }
+
+    /// The entries, in order (each with its own group's).
+    pub fn iter(&self) -> impl Iterator<Item = E> + 'a {
+        let (bytes, stride, inner) = (self.bytes, self.stride, self.inner);
+        let mut at = 0;
+        (0..self.count).map_while(move |_| {
+            let head = bytes.get(at..at + stride)?;
+            let end = at + stride + E::nested_count(head) * inner;
+            let mut entry = E::read(&mut ByteReader::new(head, "", (0, 0))).ok()?;
+            entry.set_nested(bytes.get(at + stride..end)?, inner);
+            at = end;
+            Some(entry)
+        })
+    }
+
+    /// The entry at `index` (its entries before it are walked over).
+    pub fn get(&self, index: usize) -> Option<E> {
+        self.iter().nth(index)
+    }
+
+    /// Whether an entry's own group has entries.
+    fn has_inner(&self) -> bool {
+        let mut at = 0;
+        for _ in 0..self.count {
+            let Some(head) = self.bytes.get(at..at + self.stride) else { return false };
+            let n = E::nested_count(head);
+            if n != 0 {
+                return true;
+            }
+            at += self.stride;
+        }
+        false
+    }
+
+    /// Writes the entries when they are of the strides the message's fields say (`stride_field`
+    /// `stride` for those of `field`, `inner_field` `inner` for those of their groups, `nested`);
+    /// an error naming the field they differ from otherwise.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write_strided(
+        &self,
+        w: &mut ByteWriter<'_>,
+        (stride, inner): (usize, usize),
+        message: &'static str,
+        (stride_field, inner_field): (&'static str, &'static str),
+        field: &'static str,
+        nested: &'static str,
+    ) -> Result<(), UbxError> {
+        let wrong = if !self.is_empty() && self.stride != stride {
+            Some((stride_field, field, self.stride, stride))
+        } else if self.inner != inner && self.has_inner() {
+            Some((inner_field, nested, self.inner, inner))
+        } else {
+            None
+        };
+        if let Some((name, group, written, stride)) = wrong {
+            return Err(UbxError {
+                kind: UbxErrorKind::BadValue,
+                protocol: w.protocol,
+                message,
+                class_id: None,
+                field: Some(name),
+                detail: Detail::StrideWritten { written, group, stride },
+            });
+        }
+        w.put(self.bytes);
+        Ok(())
+    }
+
+    /// The entries as a JSON array member (each entry's members, its own group's last).
+    pub fn json<W: Write>(&self, j: &mut JsonObject<'_, W>, name: &str) -> fmt::Result {
+        let out = j.key(name)?;
+        out.write_char('[')?;
+        for (i, entry) in self.iter().enumerate() {
+            if i > 0 {
+                out.write_char(',')?;
+            }
+            let mut e = JsonObject::new(&mut *out)?;
+            entry.json_members(&mut e)?;
+            e.finish()?;
+        }
+        out.write_char(']')
+    }
+}
+
+impl<E> Clone for Nesting<'_, E> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<E> Copy for Nesting<'_, E> {}
+
+impl<E> Default for Nesting<'_, E> {
+    fn default() -> Self {
+        Nesting { bytes: &[], count: 0, stride: 0, inner: 0, entry: PhantomData }
+    }
+}
+
+impl<E> PartialEq for Nesting<'_, E> {
+    fn eq(&self, other: &Self) -> bool {
+        (self.bytes, self.count, self.stride, self.inner) == (other.bytes, other.count, other.stride, other.inner)
+    }
+}
+
+impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Nesting<'a, E> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()
     }

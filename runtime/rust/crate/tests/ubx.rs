@@ -271,6 +271,32 @@ fn sbf_sub_blocks_are_sblength_bytes() {
 }
 
 #[test]
+fn sbf_sub_blocks_of_sub_blocks() {
+    // MeasEpoch: two Type-1 of 22 bytes (SB1Length), the first followed by two Type-2 of 14
+    // (SB2Length), the second by none; each one's 2 bytes after its fields kept (rule B010)
+    let frame = unhex("24 40 85 fe bb 2f 5c 00 68 a2 bf 1c 3f 09 02 16 0e 01 0c 00 01 00 11 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 02 aa bb 02 28 96 f7 ff 01 e8 fd 2c 01 39 30 cc dd 02 28 96 f7 ff 01 e8 fd 2c 01 39 30 ee ff 02 00 05 01 15 cd 5b 07 e0 b1 ff ff f4 01 fd a0 2a 00 01 00 11 22");
+    let sbf_messages::Message::MeasEpoch(mut epoch) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a MeasEpoch");
+    };
+    assert_eq!((epoch.type1.len(), epoch.type1.strides()), (2, (22, 14)));
+    let first = epoch.type1.get(0).unwrap();
+    let second = first.type2.get(1).unwrap();
+    assert_eq!((first.n2, first.type2.len(), first.trailing), (2, 2, &[0xaa, 0xbb][..]));
+    assert_eq!((second.code_offset_msb(), second.doppler_offset_msb(), second.trailing), (-1, -2, &[0xee, 0xff][..]));
+    assert_eq!(epoch.type1.get(1).map(|t| (t.svid, t.type2.len())), Some((5, 0)));
+    let mut buf = [0u8; 128];
+    assert_eq!(epoch.encode(&mut buf).unwrap(), &frame[..]);
+    epoch.sb2_length = 12; // the Type-2 sub-blocks' bytes are 14: not encoded
+    let err = epoch.encode(&mut buf).unwrap_err();
+    assert_eq!((err.kind, err.field), (UbxErrorKind::BadValue, Some("sb2_length")), "{err}");
+    assert!(err.to_string().ends_with("sb2_length takes the bytes of each entry of type2 (14), not 12"), "{err}");
+    let mut short = frame.clone(); // SB2Length 8, shorter than a Type-2's 12 bytes of fields
+    short[16] = 8;
+    let err = sbf_messages::Message::decode(&short[..8], &short[8..]).unwrap_err();
+    assert_eq!(err.to_string(), "bad_value: SBF 4027 rev 1: sb2_length is 8, an entry of type2 takes at least 12 bytes");
+}
+
+#[test]
 fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
     use nmeaspec::ais::Reading;
     // ReceiverTime (5914 rev 0) of pysbf2's pygpsdata_x5_time.sbf: 14 bytes of fields, 2 of padding.
