@@ -1041,7 +1041,7 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
                              "write_items": write_items, "_bad_value": _bad_value,
                              "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR,
-                             "PADDINGS": _PADDINGS}
+                             "PADDINGS": _PADDINGS, "_armored": _armored}
     if raw:  # errors name the `where` given, else the message's (none: an empty one)
         names["_where"] = _message_where
     counter = [0]
@@ -1074,25 +1074,7 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
                           f"{pad}    return b2a_base64(((bits << {fill} | p){shifted}).to_bytes("
                           f"{(known + fill + zeros) // 8}, \"big\"), newline=False){chars}"
                           f".translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
-        return [*usual,
-                f"{pad}length = {length}",
-                f"{pad}trailing = record.trailing",
-                f"{pad}if trailing:",
-                f"{pad}    raw = int(trailing, 2)",
-                f"{pad}    bits = bits << len(trailing) | raw & ((1 << len(trailing)) - 1)",
-                f"{pad}    length += len(trailing)",
-                f"{pad}fill = -length % 6",
-                f"{pad}padding = record.padding",
-                f"{pad}if padding == \"\":",
-                f"{pad}    bits <<= fill",
-                f"{pad}elif padding.strip(\"01\") or len(padding) != fill:",
-                f"{pad}    raise _bad_value(_where(record), \"padding\", padding, f\"{{fill}} bits\")",
-                f"{pad}else:",
-                f"{pad}    bits = bits << fill | int(padding, 2)",
-                f"{pad}length += fill",
-                f"{pad}zeros = -length % 24  # base64 takes whole bytes, three for four characters",
-                f"{pad}data = (bits << zeros).to_bytes((length + zeros) // 8, \"big\")",
-                f"{pad}return b2a_base64(data, newline=False)[:length // 6].translate(BASE64_TO_ARMOR).decode(\"ascii\"), fill"]
+        return [*usual, f"{pad}return _armored(bits, {length}, record)"]
 
     def walk(items: list[Item], static: int, pad: str, fixed: bool = True) -> list[str]:
         """The lines that write `items`, `static` bits counted but not yet added to `length`
@@ -1183,6 +1165,28 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
         code = [line.replace("_where(record)", "_where(message)") for line in code]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
     return names["encode"]
+
+
+def _armored(bits: int, length: int, record: Any) -> tuple[str, int]:
+    """The armored payload and fill bits of a message's `length` bits (`bits`) and its trailing
+    bits and padding (its fill bits as sent, or zeros): the end of every compiled encoder but for
+    the usual case it writes in line."""
+    trailing = record.trailing
+    if trailing:
+        bits = bits << len(trailing) | int(trailing, 2) & ((1 << len(trailing)) - 1)
+        length += len(trailing)
+    fill = -length % 6
+    padding = record.padding
+    if padding == "":
+        bits <<= fill
+    elif padding.strip("01") or len(padding) != fill:
+        raise _bad_value(_where(record), "padding", padding, f"{fill} bits")
+    else:
+        bits = bits << fill | int(padding, 2)
+    length += fill
+    zeros = -length % 24  # base64 takes whole bytes, three for four characters
+    data = (bits << zeros).to_bytes((length + zeros) // 8, "big")
+    return binascii.b2a_base64(data, newline=False)[:length // 6].translate(_BASE64_TO_ARMOR).decode("ascii"), fill
 
 
 def _message_where(message: Any) -> str:
