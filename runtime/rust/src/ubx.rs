@@ -776,6 +776,25 @@ pub struct Group<'a, E> {
     entry: PhantomData<E>,
 }
 
+/// Entries as the JSON array member `name` of `j`, each an object of its members.
+fn json_entries<'a, W: Write, E: Entry<'a>>(
+    j: &mut JsonObject<'_, W>,
+    name: &str,
+    entries: impl Iterator<Item = E>,
+) -> fmt::Result {
+    let out = j.key(name)?;
+    out.write_char('[')?;
+    for (i, entry) in entries.enumerate() {
+        if i > 0 {
+            out.write_char(',')?;
+        }
+        let mut e = JsonObject::new(&mut *out)?;
+        entry.json_members(&mut e)?;
+        e.finish()?;
+    }
+    out.write_char(']')
+}
+
 impl<'a, E: Entry<'a>> Group<'a, E> {
     /// The entries of `bytes`, whole entries only (None for a length that is not a whole
     /// number of entries).
@@ -860,17 +879,7 @@ impl<'a, E: Entry<'a>> Group<'a, E> {
 
     /// The entries as a JSON array member.
     pub fn json<W: Write>(&self, j: &mut JsonObject<'_, W>, name: &str) -> fmt::Result {
-        let out = j.key(name)?;
-        out.write_char('[')?;
-        for (i, entry) in self.iter().enumerate() {
-            if i > 0 {
-                out.write_char(',')?;
-            }
-            let mut e = JsonObject::new(&mut *out)?;
-            entry.json_members(&mut e)?;
-            e.finish()?;
-        }
-        out.write_char(']')
+        json_entries(j, name, self.iter())
     }
 }
 
@@ -1017,17 +1026,7 @@ impl<'a, E: Entry<'a>> Nesting<'a, E> {
 
     /// The entries as a JSON array member (each entry's members, its own group's last).
     pub fn json<W: Write>(&self, j: &mut JsonObject<'_, W>, name: &str) -> fmt::Result {
-        let out = j.key(name)?;
-        out.write_char('[')?;
-        for (i, entry) in self.iter().enumerate() {
-            if i > 0 {
-                out.write_char(',')?;
-            }
-            let mut e = JsonObject::new(&mut *out)?;
-            entry.json_members(&mut e)?;
-            e.finish()?;
-        }
-        out.write_char(']')
+        json_entries(j, name, self.iter())
     }
 }
 
