@@ -31,16 +31,17 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
             if counted is not None or isinstance(item, PayloadGroup) and item.field_major:
                 report(item.origin, "A012", f"{item.id}: counts and field-major groups are for the messages of "
                        "spec/binary (RTCM 3), not AIS payloads", "count")
-    applications: dict[tuple[int, int] | None, str] = {}
+    applications: dict[tuple[int, int, int], str] = {}   # by DAC, FI and the message type carrying them
     for application in spec.applications:
         stem = application.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
         if stem != application.id:
             report(application.origin, "S010", f"message {application.id} must live in {application.id}.yaml", "message")
-        for key in application.keys:
-            if key in applications:
-                report(application.origin, "A008", f"DAC and FI {key} are also described by {applications[key]}",
-                       "application")
-            applications.setdefault(key, application.id)
+        for dac, fid in application.keys:
+            for carrier in application.carriers_of((dac, fid)):
+                if (dac, fid, carrier) in applications:
+                    report(application.origin, "A008", f"DAC and FI {(dac, fid)} in a type {carrier} are also described "
+                           f"by {applications[dac, fid, carrier]}", "application")
+                applications.setdefault((dac, fid, carrier), application.id)
         for i, number in enumerate(application.carriers):
             carrier = owners.get(number)
             message = next((p for p in spec.payloads if p.id == carrier), None)

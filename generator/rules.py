@@ -216,7 +216,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "field); its `when` and `range` values are raw values of it; at most one case has neither.",
          "Correct `by`, the cases' values or their widths."),
     Rule("A008", "message types are described once",
-         "Each message type number belongs to one message file, each DAC and FI to one application file.",
+         "Each message type number belongs to one message file, each DAC and FI in a message type to one "
+         "application file (one DAC and FI may name two layouts in two message types, as DAC 1 FI 16 does).",
          "Remove the number from one of the files."),
     Rule("A009", "payload examples decode to their expect",
          "Every example's payload decodes, with its fill bits, as a type of its message, to the values its `expect` "

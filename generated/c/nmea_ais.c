@@ -28,7 +28,7 @@
 //   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
 //   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
 //   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
-//   (digest de390e318a701e9b)
+//   (digest 5312aafa7fd18c15)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -9043,7 +9043,7 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_METEO_HYDRO_IMO236;
         return ais_read_meteo_hydro_imo236(&r, &app->as.meteo_hydro_imo236);
     }
-    if (dac == 1u && fid == 40u && (message_type == 6u)) {
+    if ((dac == 1u && fid == 40u && (message_type == 6u)) || (dac == 1u && fid == 16u && (message_type == 6u))) {
         app->layout = NMEA_AIS_APP_PERSONS_ON_BOARD;
         return ais_read_persons_on_board(&r, &app->as.persons_on_board);
     }

@@ -28,7 +28,7 @@
 //   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
 //   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
 //   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
-//   (digest 9b1aa6eb2160a1b1)
+//   (digest cc41ca285df9ee7d)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -866,7 +866,7 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_meteo_hydro_imo236;
 
-/* Number of persons on board: AIS application DAC 1 FI 40 (in type 6). */
+/* Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type 6). */
 typedef struct {
     uint16_t persons_raw; /* Persons on board */
     uint8_t spare; /* Spare */

@@ -830,8 +830,8 @@ def compile_decoder(cls: type[Message] | type[Application]) -> Any:
                 return out + [
                     f"{pad}width = max(length - {offset}, 0)",
                     f"{pad}raw = value & ((1 << width) - 1)",
-                    f"{pad}application_cls = applications.get(({dac}, {fid}))",
-                    f"{pad}if application_cls is not None and {set_['message_type']} in application_cls.CARRIERS[{dac}, {fid}]:",
+                    f"{pad}application_cls = applications.get(({set_['message_type']}, {dac}, {fid}))",
+                    f"{pad}if application_cls is not None:",
                     f"{pad}    try:",
                     f"{pad}        application = application_cls._decoder(raw, width, '', None)",
                     f"{pad}    except NmeaError:  # (_application: the data stay data)",
@@ -1492,7 +1492,7 @@ def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
     return value, len(payload) * 6, ""
 
 
-def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple[int, int, int], type[Application]],
                      count: Any, payload: str | None, fill_bits: Any) -> Message | None:
     """The message of an encapsulation sentence (its fragment count, payload and fill bits, as
     read: Numbers), as decode gives it; None for one sentence of a message of several."""
@@ -1530,10 +1530,10 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
     return message
 
 
-def _application(message: Message, applications: dict[tuple[int, int], type[Application]],
+def _application(message: Message, applications: dict[tuple[int, int, int], type[Application]],
                  compiled: bool = True) -> Application | None:
-    """What the message's data bits carry, when an application of `applications` (by DAC and FI)
-    is carried by its type and reads them; its data member is then set to None. Data that the
+    """What the message's data bits carry, when `applications` (by message type, DAC and FI) has
+    one for them that reads them; its data member is then set to None. Data that the
     application does not read stays data. `compiled`: by the application's compiled decoder,
     when it reads the bits (else, and always when False, by the generic reader)."""
     data = message.DISPATCH
@@ -1542,8 +1542,8 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
         return None
     first, second = data.dispatch  # the DAC's and the FI's members
     dac, fid = getattr(message, first), getattr(message, second)
-    cls = applications.get((dac, fid))
-    if cls is None or getattr(message, "message_type") not in cls.CARRIERS[dac, fid]:
+    cls = applications.get((getattr(message, "message_type"), dac, fid))
+    if cls is None:
         return None
     raw = int(bits, 2) if bits else 0
     try:
@@ -1557,7 +1557,7 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     return application
 
 
-def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int, int], type[Application]],
            payload: str, fill_bits: int) -> Message:
     """The message of an armored payload, as the class its type number names in `by_type`, with
     the application of `applications` its data bits carry."""

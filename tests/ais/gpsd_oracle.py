@@ -54,11 +54,11 @@ KEPT_AS_DATA = {
 }
 
 
-def kept_as_data(dac: int, fid: int, c: ApplicationAgreement) -> str | None:
-    """Why none of the messages of a DAC and FI decode as an application (None: some do)."""
+def kept_as_data(t: int, dac: int, fid: int, c: ApplicationAgreement) -> str | None:
+    """Why none of the messages of a DAC and FI in a type `t` decode as an application (None: some do)."""
     if c.ours:
         return None
-    if (dac, fid) in APPLICATIONS:
+    if (t, dac, fid) in APPLICATIONS:
         return "every sample is cut short of the layout (below)"
     return KEPT_AS_DATA.get((dac, fid), "UNEXPLAINED: no application describes it")
 
@@ -199,11 +199,11 @@ def compare(where: str, payload: str, fill_bits: int, theirs: dict[str, Any],
         if message.application is not None:
             carried.ours += 1
             from_application = set(application_in_gpsd_form(message.application))
-        elif "data" not in theirs and (theirs["dac"], theirs["fid"]) in APPLICATIONS:
+        elif "data" not in theirs and (t, theirs["dac"], theirs["fid"]) in APPLICATIONS:
             # gpsd decoded an application whose data ours keeps: the frame must be too short for it
             data = ours["data"]
             tally.disagreements.append(Disagreement(where, t, "application", data, "decoded",
-                                                    cut_short(APPLICATIONS[theirs["dac"], theirs["fid"]], data)))
+                                                    cut_short(APPLICATIONS[t, theirs["dac"], theirs["fid"]], data)))
             carried.differences += 1
             cut = True
     clean = not cut
@@ -295,7 +295,7 @@ def report(found: dict[int, TypeAgreement]) -> str:
               for t, a in found.items() for (dac, fid), c in sorted(a.applications.items())]
     lines += ["", "Those ours decodes none of:", ""]
     lines += [f"- type {t}, DAC {dac} FI {fid}: {why}." for t, a in found.items()
-              for (dac, fid), c in sorted(a.applications.items()) if (why := kept_as_data(dac, fid, c))]
+              for (dac, fid), c in sorted(a.applications.items()) if (why := kept_as_data(t, dac, fid, c))]
     lines += ["", "## Differences", ""]
     lines += [f"- `{d.where}`, type {d.message_type} `{d.key}`: ours `{d.ours!r}`, gpsd `{d.theirs!r}`. "
               f"{d.reason or 'UNEXPLAINED: a defect of ours'}." for a in total for d in a.disagreements]

@@ -37,7 +37,7 @@ def test_the_applications_decode_every_message_of_their_dac_and_fi() -> None:
 
 
 def test_each_dac_and_fi_ours_keeps_as_data_has_a_reason() -> None:
-    kept = {(t, dac, fid): gpsd_oracle.kept_as_data(dac, fid, c)
+    kept = {(t, dac, fid): gpsd_oracle.kept_as_data(t, dac, fid, c)
             for t, a in FOUND.items() for (dac, fid), c in a.applications.items()}
     assert [key for key, why in kept.items() if why and why.startswith("UNEXPLAINED")] == []
 

@@ -28,7 +28,7 @@
 //   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
 //   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
 //   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
-//   (digest dced33e3c59a6f10)
+//   (digest 17c4bd6de8b8e4b4)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -7898,7 +7898,7 @@ impl<'a> MeteoHydroImo236<'a> {
     }
 }
 
-/// Number of persons on board: AIS application DAC 1 FI 40 (in type 6).
+/// Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PersonsOnBoard<'a> {
     /// Persons on board.
@@ -11851,7 +11851,7 @@ pub enum Application<'a> {
     MeteoHydro(MeteoHydro<'a>),
     /// DAC 1 FI 11.
     MeteoHydroImo236(MeteoHydroImo236<'a>),
-    /// DAC 1 FI 40.
+    /// DAC 1 FI 40 or DAC 1 FI 16.
     PersonsOnBoard(PersonsOnBoard<'a>),
     /// DAC 1 FI 27 or DAC 1 FI 28.
     RouteInformation(RouteInformation<'a>),
@@ -11901,7 +11901,7 @@ impl<'a> Application<'a> {
             (200, 24, 8) => InlandWaterLevel::read(&mut data.reader()).ok().map(Application::InlandWaterLevel),
             (1, 31, 8) => MeteoHydro::read(&mut data.reader()).ok().map(Application::MeteoHydro),
             (1, 11, 8) => MeteoHydroImo236::read(&mut data.reader()).ok().map(Application::MeteoHydroImo236),
-            (1, 40, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
+            (1, 40, 6) | (1, 16, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
             (1, 27, 8) | (1, 28, 6) => {
                 RouteInformation::read(&mut data.reader()).ok().map(Application::RouteInformation)
             }

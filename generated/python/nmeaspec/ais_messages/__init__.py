@@ -28,7 +28,7 @@
 #   spec/ais/applications/tidal_window.yaml, spec/ais/applications/tidal_window_imo236.yaml,
 #   spec/ais/applications/traffic_signal.yaml, spec/ais/applications/uscg_environmental.yaml,
 #   spec/ais/applications/vts_targets.yaml, spec/ais/applications/vts_targets_imo289.yaml
-#   (digest b375cf8302553a12)
+#   (digest 6bcf904a72467b61)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -122,43 +122,45 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 }
 """The class of each message type the spec describes."""
 
-APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
-    (1, 15): AirDraught,
-    (1, 22): AreaNotice,
-    (1, 23): AreaNotice,
-    (235, 10): AtonMonitoring,
-    (250, 10): AtonMonitoring,
-    (1, 20): BerthingData,
-    (1, 18): ClearanceTime,
-    (1, 25): DangerousCargo,
-    (1, 12): DangerousCargoImo236,
-    (1, 26): Environmental,
-    (1, 13): FairwayClosed,
-    (1, 2): FunctionInterrogation,
-    (200, 23): InlandEmmaWarning,
-    (200, 21): InlandEta,
-    (200, 55): InlandPersonsOnBoard,
-    (200, 22): InlandRta,
-    (200, 40): InlandSignalStatus,
-    (200, 10): InlandStaticVoyage,
-    (200, 24): InlandWaterLevel,
-    (1, 31): MeteoHydro,
-    (1, 11): MeteoHydroImo236,
-    (1, 40): PersonsOnBoard,
-    (1, 27): RouteInformation,
-    (1, 28): RouteInformation,
-    (1, 24): ShipStaticVoyage,
-    (1, 21): ShipWeather,
-    (1, 30): TextAddressed,
-    (1, 29): TextBroadcast,
-    (1, 32): TidalWindow,
-    (1, 14): TidalWindowImo236,
-    (1, 19): TrafficSignal,
-    (367, 33): UscgEnvironmental,
-    (1, 16): VtsTargets,
-    (1, 17): VtsTargetsImo289,
+APPLICATIONS: dict[tuple[int, int, int], type[ais.Application]] = {
+    (8, 1, 15): AirDraught,
+    (8, 1, 22): AreaNotice,
+    (6, 1, 23): AreaNotice,
+    (6, 235, 10): AtonMonitoring,
+    (6, 250, 10): AtonMonitoring,
+    (6, 1, 20): BerthingData,
+    (6, 1, 18): ClearanceTime,
+    (6, 1, 25): DangerousCargo,
+    (6, 1, 12): DangerousCargoImo236,
+    (8, 1, 26): Environmental,
+    (8, 1, 13): FairwayClosed,
+    (6, 1, 2): FunctionInterrogation,
+    (8, 200, 23): InlandEmmaWarning,
+    (6, 200, 21): InlandEta,
+    (6, 200, 55): InlandPersonsOnBoard,
+    (6, 200, 22): InlandRta,
+    (8, 200, 40): InlandSignalStatus,
+    (8, 200, 10): InlandStaticVoyage,
+    (8, 200, 24): InlandWaterLevel,
+    (8, 1, 31): MeteoHydro,
+    (8, 1, 11): MeteoHydroImo236,
+    (6, 1, 40): PersonsOnBoard,
+    (6, 1, 16): PersonsOnBoard,
+    (8, 1, 27): RouteInformation,
+    (6, 1, 28): RouteInformation,
+    (8, 1, 24): ShipStaticVoyage,
+    (8, 1, 21): ShipWeather,
+    (6, 1, 30): TextAddressed,
+    (8, 1, 29): TextBroadcast,
+    (6, 1, 32): TidalWindow,
+    (6, 1, 14): TidalWindowImo236,
+    (8, 1, 19): TrafficSignal,
+    (8, 367, 33): UscgEnvironmental,
+    (8, 1, 16): VtsTargets,
+    (8, 1, 17): VtsTargetsImo289,
 }
-"""The application messages the spec describes, by DAC and FI."""
+"""The application messages the spec describes, by the message type that carries them, DAC and FI
+(one DAC and FI may name two layouts in two message types: 1/16)."""
 
 
 def decode_payload(payload: str, fill_bits: int) -> ais.Message:

@@ -15,9 +15,10 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 }
 """The class of each message type the spec describes."""
 
-APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+APPLICATIONS: dict[tuple[int, int, int], type[ais.Application]] = {
 }
-"""The application messages the spec describes, by DAC and FI."""
+"""The application messages the spec describes, by the message type that carries them, DAC and FI
+(one DAC and FI may name two layouts in two message types: 1/16)."""
 
 
 def decode_payload(payload: str, fill_bits: int) -> ais.Message:
