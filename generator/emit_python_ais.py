@@ -128,7 +128,11 @@ def member(f: PayloadField) -> dict:
 def title(payload: Payload) -> str:
     """What a message is: its name and its type numbers, or (an application) its DAC and FI."""
     if payload.application is not None:
-        routes = " or ".join(f"{r.text} (in type {', '.join(map(str, r.carriers))})" for r in payload.routes)
+        by_carriers: dict[tuple[int, ...], list[str]] = {}   # routes of the same types named once
+        for r in payload.routes:
+            by_carriers.setdefault(tuple(r.carriers), []).append(r.text)
+        routes = " or ".join(f"{' or '.join(texts)} (in type {', '.join(map(str, carriers))})"
+                             for carriers, texts in by_carriers.items())
         return f"{payload.name}: AIS application {routes}."
     numbers = ", ".join(map(str, payload.types))
     return f"{payload.name}: AIS message type{'s' if len(payload.types) > 1 else ''} {numbers}."
@@ -160,7 +164,7 @@ def message_view(payload: Payload) -> dict:
         "payload": payload, "class": payload.camel, "members": members, "entries": entries,
         "doc": _doc_lines(payload),
         "types": f"({types},)" if len(payload.types) == 1 else f"({types})",
-        "title": title(payload),
+        "title": "\n".join(textwrap.wrap(title(payload), WIDTH - 6)),
         "carriers": ", ".join(f"{key}: ({', '.join(map(str, payload.carriers_of(key)))}{',' if len(payload.carriers_of(key)) == 1 else ''})"
                               for key in payload.keys),
         "layout": layout_lines(payload, payload.items, [], 8),

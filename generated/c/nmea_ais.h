@@ -866,7 +866,7 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_meteo_hydro_imo236;
 
-/* Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type 6). */
+/* Number of persons on board: AIS application DAC 1 FI 40 or DAC 1 FI 16 (in type 6). */
 typedef struct {
     uint16_t persons_raw; /* Persons on board */
     uint8_t spare; /* Spare */

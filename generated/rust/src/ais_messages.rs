@@ -7898,7 +7898,7 @@ impl<'a> MeteoHydroImo236<'a> {
     }
 }
 
-/// Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type 6).
+/// Number of persons on board: AIS application DAC 1 FI 40 or DAC 1 FI 16 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PersonsOnBoard<'a> {
     /// Persons on board.

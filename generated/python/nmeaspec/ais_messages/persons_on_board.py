@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/applications/persons_on_board.yaml (digest 92298822937e2457)
 # Regenerate: make generate (python3 -m generator generate)
-"""Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type 6)."""
+"""Number of persons on board: AIS application DAC 1 FI 40 or DAC 1 FI 16 (in type 6)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,7 @@ from .. import ais
 
 @dataclass(slots=True)
 class PersonsOnBoard(ais.Application):
-    """Number of persons on board: AIS application DAC 1 FI 40 (in type 6) or DAC 1 FI 16 (in type
-    6).
+    """Number of persons on board: AIS application DAC 1 FI 40 or DAC 1 FI 16 (in type 6).
 
     How many persons a ship has on board, sent to a station that asked: DAC 1 FI 40 (IMO
     SN.1/Circ.289), and DAC 1 FI 16 in a type 6 of the same layout (IMO SN/Circ.236, deprecated
