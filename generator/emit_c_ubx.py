@@ -200,10 +200,7 @@ class _Layout:
         if g.nested is not None:
             nested = self._nested(g, entry, natural)
         self.entries.append(entry)
-        define = f"NMEA_UBX_{self.upper}_{g.id.upper()}_MAX"
-        self.defines += [f"#ifndef {define}",
-                         f"#define {define} ({natural} < NMEA_UBX_MAX_ENTRIES ? {natural} : NMEA_UBX_MAX_ENTRIES)",
-                         "#endif"]
+        define = self._bound(g.id, natural)
         self.members.append(f"uint16_t {count_name}; /* the entries of {name} */")
         self.arrays.append(f"{entry.struct} {name}[{define}]; /* {g.name} */")
         table = f"{self.prefix}_{g.id}_group"
@@ -215,6 +212,15 @@ class _Layout:
                if g.stride else "0, 0, NULL, ") + f"{nested}}};")
         self.rows.append(self.row(g.id, f"&{table}", f"offsetof({self.struct}, {name})", "0", 0, "GROUP", 0, 0, 0,
                                   "NUMBER", False))
+
+    def _bound(self, group_id: str, natural: int) -> str:
+        """The macro of a group's array size: `natural` entries, at most NMEA_UBX_MAX_ENTRIES, unless
+        the build sets it."""
+        define = f"NMEA_UBX_{self.upper}_{group_id.upper()}_MAX"
+        self.defines += [f"#ifndef {define}",
+                         f"#define {define} ({natural} < NMEA_UBX_MAX_ENTRIES ? {natural} : NMEA_UBX_MAX_ENTRIES)",
+                         "#endif"]
+        return define
 
     def _nested(self, g: PayloadGroup, entry: _Layout, outer: int) -> str:
         """The group each entry of `g` ends with: its entries' struct, the message's one array of them
@@ -233,10 +239,7 @@ class _Layout:
         first = entry._name(f"{name}_first")
         entry.members.append(f"uint16_t {first}; /* the index in {name} of its first entry "
                              f"({member(n.count)} of them) */")
-        define = f"NMEA_UBX_{self.upper}_{n.id.upper()}_MAX"
-        self.defines += [f"#ifndef {define}",
-                         f"#define {define} ({outer} < NMEA_UBX_MAX_ENTRIES ? {outer} : NMEA_UBX_MAX_ENTRIES)",
-                         "#endif"]
+        define = self._bound(n.id, outer)
         self.members.append(f"uint16_t {count_name}; /* the entries of {name}, every {g.id} entry's */")
         self.arrays.append(f"{inner.struct} {name}[{define}]; /* {n.name}: those of {g.id}[k] from its {first} on */")
         count_member, _ = entry.counters[n.count]
